@@ -1,0 +1,82 @@
+// anisodwr command-line program: parse, run, report.
+#include "config/errors.h"
+#include "config/parameters.h"
+#include "study/study.h"
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char *usage = R"(anisodwr - space-time cG(p)-dG(r) SUPG solver for convection-diffusion-reaction
+
+Usage:
+  anisodwr run CONFIG.json [--output DIR] [--set section.key=value ...]
+  anisodwr defaults        print the complete default config (documented JSON; "#key" = doc)
+  anisodwr --help
+
+Exit codes: 0 success, 2 bad input (file, JSON, key, value), 3 numerical failure.
+Outputs (in output.directory): summary.json, convergence.csv (study.mode = convergence),
+solution.pvd + solution-NNNN.vtu (study.mode = single).
+)";
+} // namespace
+
+int main(int argc, char **argv)
+{
+  using namespace anisodwr;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try
+  {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help")
+    {
+      std::cout << usage;
+      return args.empty() ? exit_input_error : exit_ok;
+    }
+    if (args[0] == "defaults")
+    {
+      Parameters::print_defaults(std::cout);
+      return exit_ok;
+    }
+    if (args[0] != "run")
+      throw InputError("unknown command '" + args[0] + "'; expected run, defaults or --help");
+    if (args.size() < 2)
+      throw InputError("run: missing CONFIG.json");
+    std::vector<std::string> overrides;
+    std::string output;
+    for (std::size_t i = 2; i < args.size(); ++i)
+    {
+      if ((args[i] == "--set" || args[i] == "--output") && i + 1 >= args.size())
+        throw InputError(args[i] + ": missing value");
+      if (args[i] == "--set")
+        overrides.push_back(args[++i]);
+      else if (args[i] == "--output")
+        output = args[++i];
+      else
+        throw InputError("unknown option '" + args[i] + "'; expected --output DIR or --set "
+                         "section.key=value");
+    }
+    if (!output.empty())
+      overrides.push_back("output.directory=" + output);
+    const Parameters prm = Parameters::read(args[1], overrides);
+    run_study(prm);
+    std::cout << "results: " << prm.output_directory << "/ (summary.json";
+    std::cout << (prm.mode == "convergence" ? ", convergence.csv" : ", solution.pvd") << ")\n";
+    return exit_ok;
+  }
+  catch (const InputError &e)
+  {
+    std::cerr << "anisodwr: input error: " << e.what() << std::endl;
+    return exit_input_error;
+  }
+  catch (const NumericalError &e)
+  {
+    std::cerr << "anisodwr: numerical failure: " << e.what() << std::endl;
+    return exit_numerical_error;
+  }
+  catch (const std::exception &e)
+  {
+    std::cerr << "anisodwr: internal error: " << e.what() << std::endl;
+    return 1;
+  }
+}

@@ -1,0 +1,340 @@
+#include "config/parameters.h"
+
+#include "config/errors.h"
+
+#include <deal.II/base/patterns.h>
+
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace anisodwr
+{
+namespace
+{
+using dealii::Patterns::PatternBase;
+namespace P = dealii::Patterns;
+
+enum class Kind
+{
+  integer,
+  real,
+  boolean,
+  text
+};
+
+struct Entry
+{
+  std::string section, key, default_value;
+  Kind kind;
+  std::shared_ptr<PatternBase> pattern;
+  std::string doc;
+};
+
+std::vector<Entry> make_entries()
+{
+  auto integer = [](int lo, int hi) { return std::make_shared<P::Integer>(lo, hi); };
+  auto real = [](double lo) { return std::make_shared<P::Double>(lo); };
+  auto choice = [](const std::string &s) { return std::make_shared<P::Selection>(s); };
+  auto boolean = std::make_shared<P::Bool>();
+  auto text = std::make_shared<P::Anything>();
+  return {
+    {"scene", "name", "moving_hump", Kind::text, choice("moving_hump|manufactured|heat"),
+     "Benchmark scene (see SCENES.md): moving_hump, manufactured or heat."},
+    {"scene", "variant", "", Kind::text, text,
+     "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
+     "alpha), poly_space (rotating coefficients, spatial part in Q2). heat: poly "
+     "(default) or trig. moving_hump: none."},
+    {"scene", "epsilon", "1e-6", Kind::real, real(0.), "Diffusion coefficient, > 0."},
+    {"scene", "end_time", "0.5", Kind::real, real(0.), "Final time T > 0."},
+    {"discretization", "p", "1", Kind::integer, integer(1, 4),
+     "Polynomial degree of FE_Q in space (1..4)."},
+    {"discretization", "r", "0", Kind::integer, integer(0, 10),
+     "Polynomial degree dG(r) in time (>= 0)."},
+    {"discretization", "delta0", "1.0", Kind::real, real(0.),
+     "SUPG parameter: delta_K = delta0 * |K|^(1/d); 0 turns SUPG off."},
+    {"discretization", "initial_refinements", "2", Kind::integer, integer(0, 14),
+     "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},
+    {"discretization", "n_slabs", "5", Kind::integer, integer(1, 1000000),
+     "Number of equal time slabs."},
+    {"solver", "type", "direct", Kind::text, choice("direct"),
+     "Slab solver: direct (UMFPACK)."},
+    {"solver", "reuse_factorization", "true", Kind::boolean, boolean,
+     "Reuse the LU factorization while the slab matrix is unchanged (same tau, "
+     "coefficients constant in time)."},
+    {"study", "mode", "single", Kind::text, choice("single|convergence"),
+     "single: one primal run; convergence: uniform refinement over study.levels levels."},
+    {"study", "refine", "both", Kind::text, choice("space|time|both"),
+     "Convergence study: refine h (space), tau (time) or both per level."},
+    {"study", "levels", "4", Kind::integer, integer(1, 20),
+     "Number of levels of a convergence study."},
+    {"output", "directory", "results/moving_hump", Kind::text, text,
+     "Output directory (created if missing); --output overrides it."},
+    {"output", "vtu_every", "1", Kind::integer, integer(0, 1000000),
+     "Write VTU of u(t_n^-) every k-th slab (and at T); 0 writes none."},
+    {"output", "progress", "true", Kind::boolean, boolean,
+     "Print one progress line per slab to stdout."},
+  };
+}
+
+const std::vector<Entry> &entries()
+{
+  static const std::vector<Entry> table = make_entries();
+  return table;
+}
+
+std::size_t edit_distance(const std::string &a, const std::string &b)
+{
+  std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    prev[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    cur[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string suggestion(const std::string &word, const std::vector<std::string> &known)
+{
+  std::string best;
+  std::size_t best_d = 3;
+  for (const auto &k : known)
+    if (const auto d = edit_distance(word, k); d < best_d)
+    {
+      best_d = d;
+      best = k;
+    }
+  std::string list;
+  for (const auto &k : known)
+    list += (list.empty() ? "" : ", ") + k;
+  return (best.empty() ? "" : " (did you mean '" + best + "'?)") + "; expected one of: " + list;
+}
+
+/// Holds the values while reading; checks each value against its pattern.
+class Reader
+{
+public:
+  Reader()
+  {
+    for (const auto &e : entries())
+      values[e.section + "." + e.key] = e.default_value;
+  }
+
+  void set(const std::string &section, const std::string &key, const std::string &value,
+           const std::string &origin)
+  {
+    std::vector<std::string> sections, keys;
+    const Entry *found = nullptr;
+    for (const auto &e : entries())
+    {
+      if (std::find(sections.begin(), sections.end(), e.section) == sections.end())
+        sections.push_back(e.section);
+      if (e.section == section)
+      {
+        keys.push_back(e.key);
+        if (e.key == key)
+          found = &e;
+      }
+    }
+    if (keys.empty())
+      throw InputError(origin + ": unknown section '" + section + "'" +
+                       suggestion(section, sections));
+    if (!found)
+      throw InputError(origin + ": unknown key '" + section + "." + key + "'" +
+                       suggestion(key, keys));
+    if (!found->pattern->match(value))
+      throw InputError(origin + ": invalid value '" + value + "' for key '" + section + "." +
+                       key + "'; expected " + found->pattern->description(
+                                                  PatternBase::OutputStyle::Text) +
+                       " (" + found->doc + ")");
+    values[section + "." + key] = value;
+  }
+
+  void read_file(const std::string &file)
+  {
+    std::ifstream in(file);
+    if (!in)
+      throw InputError(file + ": cannot open the config file for reading");
+    boost::property_tree::ptree tree;
+    try
+    {
+      boost::property_tree::read_json(in, tree);
+    }
+    catch (const boost::property_tree::json_parser_error &e)
+    {
+      throw InputError(file + ": invalid JSON at line " + std::to_string(e.line()) + ": " +
+                       e.message());
+    }
+    for (const auto &[section, sub] : tree)
+    {
+      if (!section.empty() && section[0] == '#')
+        continue;
+      if (sub.empty())
+        throw InputError(file + ": top-level key '" + section +
+                         "' must be a section object like {\"key\": value}");
+      for (const auto &[key, leaf] : sub)
+      {
+        if (!key.empty() && key[0] == '#')
+          continue;
+        if (!leaf.empty())
+          throw InputError(file + ": key '" + section + "." + key +
+                           "' must hold a number, boolean or string, not an object or list");
+        set(section, key, leaf.data(), file);
+      }
+    }
+  }
+
+  void apply_override(const std::string &assignment)
+  {
+    const auto eq = assignment.find('='), dot = assignment.find('.');
+    if (eq == std::string::npos || dot == std::string::npos || dot > eq)
+      throw InputError("--set '" + assignment + "': expected the form section.key=value");
+    set(assignment.substr(0, dot), assignment.substr(dot + 1, eq - dot - 1),
+        assignment.substr(eq + 1), "--set");
+  }
+
+  Parameters typed() const
+  {
+    Parameters p;
+    p.scene = get("scene.name");
+    p.variant = get("scene.variant");
+    p.epsilon = real("scene.epsilon");
+    p.end_time = real("scene.end_time");
+    p.p = integer("discretization.p");
+    p.r = integer("discretization.r");
+    p.delta0 = real("discretization.delta0");
+    p.initial_refinements = integer("discretization.initial_refinements");
+    p.n_slabs = integer("discretization.n_slabs");
+    p.solver_type = get("solver.type");
+    p.reuse_factorization = boolean("solver.reuse_factorization");
+    p.mode = get("study.mode");
+    p.refine = get("study.refine");
+    p.levels = integer("study.levels");
+    p.output_directory = get("output.directory");
+    p.vtu_every = integer("output.vtu_every");
+    p.progress = boolean("output.progress");
+    positive("scene.epsilon", p.epsilon);
+    positive("scene.end_time", p.end_time);
+    return p;
+  }
+
+private:
+  std::map<std::string, std::string> values;
+
+  std::string get(const std::string &k) const { return values.at(k); }
+  double real(const std::string &k) const { return std::stod(get(k)); }
+  unsigned int integer(const std::string &k) const { return std::stoul(get(k)); }
+  bool boolean(const std::string &k) const
+  {
+    return get(k) == "true" || get(k) == "True" || get(k) == "yes";
+  }
+  void positive(const std::string &k, double v) const
+  {
+    if (!(v > 0.))
+      throw InputError("invalid value '" + get(k) + "' for key '" + k +
+                       "'; expected a number > 0");
+  }
+};
+
+std::string json_value(const Entry &e, const std::string &value)
+{
+  if (e.kind == Kind::text)
+    return "\"" + value + "\"";
+  if (e.kind == Kind::boolean)
+    return (value == "true" || value == "True" || value == "yes") ? "true" : "false";
+  return value;
+}
+
+std::string format(const std::map<std::string, std::string> &values, bool with_docs,
+                   unsigned int indent)
+{
+  const std::string pad(indent, ' ');
+  std::ostringstream out;
+  out << "{";
+  std::string section;
+  for (const auto &e : entries())
+  {
+    if (e.section != section)
+    {
+      out << (section.empty() ? "\n" : "\n" + pad + "  },\n") << pad << "  \"" << e.section
+          << "\": {";
+      section = e.section;
+    }
+    else
+      out << ",";
+    if (with_docs)
+      out << "\n"
+          << pad << "    \"#" << e.key << "\": \"" << e.doc << " Allowed: "
+          << e.pattern->description(PatternBase::OutputStyle::Text) << "\",";
+    out << "\n"
+        << pad << "    \"" << e.key << "\": " << json_value(e, values.at(e.section + "." + e.key));
+  }
+  out << "\n" << pad << "  }\n" << pad << "}";
+  return out.str();
+}
+} // namespace
+
+Parameters Parameters::read(const std::string &file, const std::vector<std::string> &overrides)
+{
+  Reader reader;
+  reader.read_file(file);
+  for (const auto &o : overrides)
+    reader.apply_override(o);
+  return reader.typed();
+}
+
+Parameters Parameters::from_overrides(const std::vector<std::string> &overrides)
+{
+  Reader reader;
+  for (const auto &o : overrides)
+    reader.apply_override(o);
+  return reader.typed();
+}
+
+void Parameters::print_defaults(std::ostream &out)
+{
+  std::map<std::string, std::string> values;
+  for (const auto &e : entries())
+    values[e.section + "." + e.key] = e.default_value;
+  out << format(values, true, 0) << std::endl;
+}
+
+std::string Parameters::to_json(unsigned int indent) const
+{
+  auto num = [](double v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+  };
+  std::map<std::string, std::string> v{
+    {"scene.name", scene},
+    {"scene.variant", variant},
+    {"scene.epsilon", num(epsilon)},
+    {"scene.end_time", num(end_time)},
+    {"discretization.p", std::to_string(p)},
+    {"discretization.r", std::to_string(r)},
+    {"discretization.delta0", num(delta0)},
+    {"discretization.initial_refinements", std::to_string(initial_refinements)},
+    {"discretization.n_slabs", std::to_string(n_slabs)},
+    {"solver.type", solver_type},
+    {"solver.reuse_factorization", reuse_factorization ? "true" : "false"},
+    {"study.mode", mode},
+    {"study.refine", refine},
+    {"study.levels", std::to_string(levels)},
+    {"output.directory", output_directory},
+    {"output.vtu_every", std::to_string(vtu_every)},
+    {"output.progress", progress ? "true" : "false"}};
+  return format(v, false, indent);
+}
+} // namespace anisodwr

@@ -1,0 +1,64 @@
+#include "io/vtu.h"
+
+#include <deal.II/base/function.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+namespace
+{
+template <int dim>
+class ExactAt : public Function<dim>
+{
+public:
+  ExactAt(const ExactSolution<dim> &u, double t) : u(u), t(t) {}
+  double value(const Point<dim> &p, unsigned int) const override { return u.value(p, t); }
+
+private:
+  const ExactSolution<dim> &u;
+  double t;
+};
+} // namespace
+
+template <int dim>
+std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t,
+                      const std::string &dir, const std::string &name, unsigned int index)
+{
+  DataOut<dim> out;
+  out.attach_dof_handler(space.dof_handler());
+  out.add_data_vector(u, "u");
+  Vector<double> exact;
+  if (space.scene.exact())
+  {
+    exact.reinit(space.n_dofs());
+    VectorTools::interpolate(space.mapping(), space.dof_handler(),
+                             ExactAt<dim>(*space.scene.exact(), t), exact);
+    out.add_data_vector(exact, "u_exact");
+  }
+  out.build_patches(space.mapping(), space.degree());
+  DataOutBase::VtkFlags flags(t, index);
+  out.set_flags(flags);
+  std::ostringstream file;
+  file << name << "-" << std::setw(4) << std::setfill('0') << index << ".vtu";
+  std::ofstream f(dir + "/" + file.str());
+  out.write_vtu(f);
+  return file.str();
+}
+
+void write_pvd(const std::string &dir, const std::string &name,
+               const std::vector<std::pair<double, std::string>> &records)
+{
+  std::ofstream f(dir + "/" + name + ".pvd");
+  DataOutBase::write_pvd_record(f, records);
+}
+
+template std::string write_vtu<2>(const Space<2> &, const Vector<double> &, double,
+                                  const std::string &, const std::string &, unsigned int);
+} // namespace anisodwr

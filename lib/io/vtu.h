@@ -1,0 +1,20 @@
+#pragma once
+// VTU snapshots of a spatial finite element function and the PVD time series.
+#include "space/space.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace anisodwr
+{
+/// Writes dir/<name>-<index>.vtu with the field "u" and "u_exact" when known;
+/// returns the file name relative to dir.
+template <int dim>
+std::string write_vtu(const Space<dim> &space, const dealii::Vector<double> &u, double t,
+                      const std::string &dir, const std::string &name, unsigned int index);
+
+/// Writes dir/<name>.pvd listing (time, file) pairs (ParaView opens it).
+void write_pvd(const std::string &dir, const std::string &name,
+               const std::vector<std::pair<double, std::string>> &records);
+} // namespace anisodwr

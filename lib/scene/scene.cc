@@ -1,0 +1,67 @@
+#include "scene/scene.h"
+
+#include "config/errors.h"
+#include "config/parameters.h"
+#include "scene/scenes.h"
+
+namespace anisodwr
+{
+namespace
+{
+template <int dim>
+const ExactSolution<dim> &require_exact(const ExactSolution<dim> *u, const char *what)
+{
+  if (!u)
+    throw std::logic_error(std::string("scene has no exact solution and does not override ") +
+                           what);
+  return *u;
+}
+} // namespace
+
+template <int dim>
+double Scene<dim>::rhs(const dealii::Point<dim> &x, double t) const
+{
+  const auto &u = require_exact(exact(), "rhs()");
+  return u.time_derivative(x, t) - epsilon * u.laplacian(x, t) +
+         convection(x, t) * u.gradient(x, t) + reaction(x, t) * u.value(x, t);
+}
+
+template <int dim>
+double Scene<dim>::initial_value(const dealii::Point<dim> &x) const
+{
+  return require_exact(exact(), "initial_value()").value(x, 0.);
+}
+
+template <int dim>
+double Scene<dim>::dirichlet_value(const dealii::Point<dim> &x, double t) const
+{
+  return require_exact(exact(), "dirichlet_value()").value(x, t);
+}
+
+template <int dim>
+double Scene<dim>::neumann_value(const dealii::Point<dim> &x, const dealii::Tensor<1, dim> &n,
+                                 double t) const
+{
+  return epsilon * (require_exact(exact(), "neumann_value()").gradient(x, t) * n);
+}
+
+template <int dim>
+std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm)
+{
+  std::unique_ptr<Scene<dim>> scene;
+  if (prm.scene == "moving_hump")
+    scene = std::make_unique<MovingHump>(prm.epsilon, prm.variant);
+  else if (prm.scene == "manufactured")
+    scene = std::make_unique<Manufactured>(prm.epsilon, prm.variant);
+  else if (prm.scene == "heat")
+    scene = std::make_unique<Heat>(prm.epsilon, prm.variant);
+  else
+    throw InputError("invalid value '" + prm.scene +
+                     "' for key 'scene.name'; expected moving_hump, manufactured or heat");
+  scene->end_time = prm.end_time;
+  return scene;
+}
+
+template class Scene<2>;
+template std::unique_ptr<Scene<2>> create_scene<2>(const Parameters &);
+} // namespace anisodwr

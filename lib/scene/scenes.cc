@@ -1,0 +1,184 @@
+#include "scene/scenes.h"
+
+#include "config/errors.h"
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+
+#include <cmath>
+
+namespace anisodwr
+{
+namespace
+{
+constexpr double pi = M_PI;
+
+void require_variant(const std::string &scene, const std::string &variant,
+                     std::initializer_list<const char *> allowed)
+{
+  std::string list;
+  for (const char *a : allowed)
+  {
+    if (variant == a)
+      return;
+    list += std::string(list.empty() ? "" : ", ") + (*a ? a : "\"\"");
+  }
+  throw InputError("invalid value '" + variant + "' for key 'scene.variant' of scene '" +
+                   scene + "'; expected one of: " + list);
+}
+
+/// The moving hump of John, Maubach & Tobiska: 16 sin(pi t) g(x,y) h(x,y).
+class HumpSolution : public ExactSolution<2>
+{
+public:
+  explicit HumpSolution(double eps) : A(2. / std::sqrt(eps)) {}
+
+  double value(const dealii::Point<2> &p, double t) const override
+  {
+    return 16. * std::sin(pi * t) * g(p) * h(p);
+  }
+  double time_derivative(const dealii::Point<2> &p, double t) const override
+  {
+    return 16. * pi * std::cos(pi * t) * g(p) * h(p);
+  }
+  dealii::Tensor<1, 2> gradient(const dealii::Point<2> &p, double t) const override
+  {
+    const double x = p[0], y = p[1];
+    const double gx = (1. - 2. * x) * y * (1. - y), gy = x * (1. - x) * (1. - 2. * y);
+    const double k = dh(p); // h_x = k s_x, s_x = -2(x - x0)
+    dealii::Tensor<1, 2> grad;
+    grad[0] = gx * h(p) + g(p) * k * (-2. * (x - c));
+    grad[1] = gy * h(p) + g(p) * k * (-2. * (y - c));
+    return 16. * std::sin(pi * t) * grad;
+  }
+  double laplacian(const dealii::Point<2> &p, double t) const override
+  {
+    const double x = p[0], y = p[1];
+    const double gx = (1. - 2. * x) * y * (1. - y), gy = x * (1. - x) * (1. - 2. * y);
+    const double gxx = -2. * y * (1. - y), gyy = -2. * x * (1. - x);
+    const double s = s_of(p), q = 1. + A * A * s * s;
+    const double sx = -2. * (x - c), sy = -2. * (y - c);
+    // h = 1/2 + atan(A s)/pi: h_i = A s_i / (pi q), h_ii = (A s_ii q - A s_i 2 A^2 s s_i)/(pi q^2)
+    const double hx = A * sx / (pi * q), hy = A * sy / (pi * q);
+    const double hxx = (A * (-2.) * q - A * sx * 2. * A * A * s * sx) / (pi * q * q);
+    const double hyy = (A * (-2.) * q - A * sy * 2. * A * A * s * sy) / (pi * q * q);
+    const double lap = gxx * h(p) + 2. * gx * hx + g(p) * hxx + gyy * h(p) + 2. * gy * hy +
+                       g(p) * hyy;
+    return 16. * std::sin(pi * t) * lap;
+  }
+
+private:
+  static constexpr double r0 = 0.25, c = 0.5;
+  double A;
+  static double g(const dealii::Point<2> &p)
+  {
+    return p[0] * (1. - p[0]) * p[1] * (1. - p[1]);
+  }
+  static double s_of(const dealii::Point<2> &p)
+  {
+    return r0 * r0 - (p[0] - c) * (p[0] - c) - (p[1] - c) * (p[1] - c);
+  }
+  double h(const dealii::Point<2> &p) const { return 0.5 + std::atan(A * s_of(p)) / pi; }
+  /// dh/ds
+  double dh(const dealii::Point<2> &p) const
+  {
+    const double s = s_of(p);
+    return A / (pi * (1. + A * A * s * s));
+  }
+};
+
+double sin_pi(double x) { return std::sin(pi * x); }
+double dsin_pi(double x) { return pi * std::cos(pi * x); }
+double ddsin_pi(double x) { return -pi * pi * std::sin(pi * x); }
+double bubble(double x) { return 4. * x * (1. - x); }
+double dbubble(double x) { return 4. - 8. * x; }
+double ddbubble(double) { return -8.; }
+double quad_neg(double x) { return x * x - x; } // (x^2 - x)
+double dquad_neg(double x) { return 2. * x - 1.; }
+double ddquad_neg(double) { return 2.; }
+double decay(double t) { return std::exp(-t) * (1. + t * t); }
+double ddecay(double t) { return std::exp(-t) * (-1. + 2. * t - t * t); }
+double heat_poly_t(double t) { return -t / 4.; }
+double heat_poly_dt(double) { return -0.25; }
+
+void unit_square(dealii::Triangulation<2, 2> &tria)
+{
+  dealii::GridGenerator::hyper_cube(tria, 0., 1.);
+}
+} // namespace
+
+double SeparableSolution::value(const dealii::Point<2> &p, double t) const
+{
+  return X.f(p[0]) * Y.f(p[1]) * T(t);
+}
+dealii::Tensor<1, 2> SeparableSolution::gradient(const dealii::Point<2> &p, double t) const
+{
+  dealii::Tensor<1, 2> g;
+  g[0] = X.df(p[0]) * Y.f(p[1]) * T(t);
+  g[1] = X.f(p[0]) * Y.df(p[1]) * T(t);
+  return g;
+}
+double SeparableSolution::laplacian(const dealii::Point<2> &p, double t) const
+{
+  return (X.ddf(p[0]) * Y.f(p[1]) + X.f(p[0]) * Y.ddf(p[1])) * T(t);
+}
+double SeparableSolution::time_derivative(const dealii::Point<2> &p, double t) const
+{
+  return X.f(p[0]) * Y.f(p[1]) * dT(t);
+}
+
+MovingHump::MovingHump(double eps, const std::string &variant)
+{
+  require_variant("moving_hump", variant, {""});
+  epsilon = eps;
+  exact_solution = std::make_unique<HumpSolution>(eps);
+}
+void MovingHump::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const { unit_square(tria); }
+dealii::Tensor<1, 2> MovingHump::convection(const dealii::Point<2> &, double) const
+{
+  return dealii::Tensor<1, 2>({2., 3.});
+}
+
+Manufactured::Manufactured(double eps, const std::string &variant)
+{
+  require_variant("manufactured", variant, {"", "constant", "rotating", "poly_space"});
+  epsilon = eps;
+  rotating = (variant == "rotating" || variant == "poly_space");
+  const SeparableSolution::Factor s{sin_pi, dsin_pi, ddsin_pi}, b{bubble, dbubble, ddbubble};
+  if (variant == "poly_space")
+    exact_solution = std::make_unique<SeparableSolution>(b, b, decay, ddecay);
+  else
+    exact_solution = std::make_unique<SeparableSolution>(s, s, decay, ddecay);
+}
+void Manufactured::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const
+{
+  unit_square(tria);
+}
+dealii::Tensor<1, 2> Manufactured::convection(const dealii::Point<2> &p, double t) const
+{
+  if (rotating)
+    return dealii::Tensor<1, 2>({-(p[1] - 0.5) * (1. + t), (p[0] - 0.5) * (1. + t)});
+  return dealii::Tensor<1, 2>({1., 0.5});
+}
+double Manufactured::reaction(const dealii::Point<2> &, double t) const
+{
+  return rotating ? 1. + t : 1.;
+}
+
+Heat::Heat(double eps, const std::string &variant)
+{
+  require_variant("heat", variant, {"", "poly", "trig"});
+  epsilon = eps;
+  if (variant == "trig")
+  {
+    const SeparableSolution::Factor s{sin_pi, dsin_pi, ddsin_pi};
+    exact_solution = std::make_unique<SeparableSolution>(s, s, sin_pi, dsin_pi);
+  }
+  else
+  {
+    const SeparableSolution::Factor q{quad_neg, dquad_neg, ddquad_neg};
+    exact_solution = std::make_unique<SeparableSolution>(q, q, heat_poly_t, heat_poly_dt);
+  }
+}
+void Heat::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const { unit_square(tria); }
+} // namespace anisodwr

@@ -1,0 +1,77 @@
+#pragma once
+// The benchmark scenes of SCENES.md (2D).
+#include "scene/scene.h"
+
+namespace anisodwr
+{
+/// Hump with a circular interior layer (John, Maubach & Tobiska 1997), b = (2,3), alpha = 1.
+class MovingHump : public Scene<2>
+{
+public:
+  MovingHump(double epsilon, const std::string &variant);
+  std::string name() const override { return "moving_hump"; }
+  void make_coarse_grid(dealii::Triangulation<2, 2> &tria) const override;
+  dealii::Tensor<1, 2> convection(const dealii::Point<2> &, double) const override;
+  double reaction(const dealii::Point<2> &, double) const override { return 1.; }
+  bool coefficients_depend_on_time() const override { return false; }
+};
+
+/// Smooth solutions on (0,1)^2 for convergence studies.
+///  constant:   u = sin(pi x) sin(pi y) e^{-t} (1+t^2), b = (1, 0.5), alpha = 1
+///  rotating:   same u, b = (-y+1/2, x-1/2)(1+t), alpha = 1 + t
+///  poly_space: u = 16 x(1-x) y(1-y) e^{-t}(1+t^2) (in Q2), rotating b and alpha
+class Manufactured : public Scene<2>
+{
+public:
+  Manufactured(double epsilon, const std::string &variant);
+  std::string name() const override { return "manufactured"; }
+  void make_coarse_grid(dealii::Triangulation<2, 2> &tria) const override;
+  dealii::Tensor<1, 2> convection(const dealii::Point<2> &, double) const override;
+  double reaction(const dealii::Point<2> &, double) const override;
+  bool coefficients_depend_on_time() const override { return rotating; }
+
+private:
+  bool rotating = false;
+};
+
+/// Pure diffusion (b = 0, alpha = 0) on (0,1)^2.
+///  poly: u = -(x^2-x)(y^2-y) t / 4;  trig: u = sin(pi x) sin(pi y) sin(pi t).
+class Heat : public Scene<2>
+{
+public:
+  Heat(double epsilon, const std::string &variant);
+  std::string name() const override { return "heat"; }
+  void make_coarse_grid(dealii::Triangulation<2, 2> &tria) const override;
+  dealii::Tensor<1, 2> convection(const dealii::Point<2> &, double) const override
+  {
+    return {};
+  }
+  double reaction(const dealii::Point<2> &, double) const override { return 0.; }
+  bool coefficients_depend_on_time() const override { return false; }
+};
+
+/// u(x,y,t) = X(x) Y(y) T(t) with 1D factors and their first two derivatives.
+class SeparableSolution : public ExactSolution<2>
+{
+public:
+  struct Factor
+  {
+    double (*f)(double);
+    double (*df)(double);
+    double (*ddf)(double);
+  };
+  SeparableSolution(Factor X, Factor Y, double (*T)(double), double (*dT)(double))
+      : X(X), Y(Y), T(T), dT(dT)
+  {
+  }
+  double value(const dealii::Point<2> &p, double t) const override;
+  dealii::Tensor<1, 2> gradient(const dealii::Point<2> &p, double t) const override;
+  double laplacian(const dealii::Point<2> &p, double t) const override;
+  double time_derivative(const dealii::Point<2> &p, double t) const override;
+
+private:
+  Factor X, Y;
+  double (*T)(double);
+  double (*dT)(double);
+};
+} // namespace anisodwr

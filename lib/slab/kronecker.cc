@@ -1,0 +1,143 @@
+#include "slab/kronecker.h"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+void make_kron_sparsity(const SparsityPattern &spatial, unsigned int m, SparsityPattern &out)
+{
+  const auto n = spatial.n_rows();
+  std::vector<unsigned int> lengths(n * m);
+  for (types::global_dof_index i = 0; i < n; ++i)
+    for (unsigned int k = 0; k < m; ++k)
+      lengths[i * m + k] = spatial.row_length(i) * m;
+  out.reinit(n * m, n * m, lengths);
+  std::vector<types::global_dof_index> cols;
+  for (types::global_dof_index i = 0; i < n; ++i)
+  {
+    cols.clear();
+    for (auto it = spatial.begin(i); it != spatial.end(i); ++it)
+      for (unsigned int l = 0; l < m; ++l)
+        cols.push_back(it->column() * m + l);
+    std::sort(cols.begin(), cols.end());
+    for (unsigned int k = 0; k < m; ++k)
+      out.add_entries(i * m + k, cols.begin(), cols.end(), true);
+  }
+  out.compress();
+}
+
+void assemble_kron(const std::vector<KronTerm> &terms, const SparsityPattern &pattern,
+                   SparseMatrix<double> &K)
+{
+  if (terms.empty())
+    throw std::logic_error("assemble_kron: no terms");
+  const SparsityPattern &spatial = terms[0].S->get_sparsity_pattern();
+  for (const auto &t : terms)
+    if (&t.S->get_sparsity_pattern() != &spatial)
+      throw std::logic_error("assemble_kron: spatial matrices must share one pattern");
+  const unsigned int m = terms[0].T.m();
+  K.reinit(pattern);
+  const auto n = spatial.n_rows();
+  std::vector<types::global_dof_index> scols, kcols, order;
+  std::vector<double> svals, kvals;
+  for (types::global_dof_index i = 0; i < n; ++i)
+  {
+    const unsigned int len = spatial.row_length(i);
+    scols.resize(len);
+    svals.assign(len * terms.size(), 0.);
+    for (unsigned int p = 0; p < len; ++p)
+      scols[p] = spatial.column_number(i, p);
+    for (unsigned int t = 0; t < terms.size(); ++t)
+    {
+      unsigned int p = 0;
+      for (auto it = terms[t].S->begin(i); it != terms[t].S->end(i); ++it, ++p)
+        svals[t * len + p] = it->value();
+    }
+    order.resize(len);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+              [&](auto a, auto b) { return scols[a] < scols[b]; });
+    kcols.resize(len * m);
+    kvals.resize(len * m);
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      unsigned int c = 0;
+      for (const auto p : order)
+        for (unsigned int l = 0; l < m; ++l, ++c)
+        {
+          kcols[c] = scols[p] * m + l;
+          double v = 0.;
+          for (unsigned int t = 0; t < terms.size(); ++t)
+            v += terms[t].T(k, l) * svals[t * len + p];
+          kvals[c] = v;
+        }
+      K.add(i * m + k, c, kcols.data(), kvals.data(), false, true);
+    }
+  }
+}
+
+void vmult_kron(const std::vector<KronTerm> &terms, const Vector<double> &src,
+                Vector<double> &dst, bool transpose)
+{
+  const unsigned int m = terms.at(0).T.m();
+  const auto n = terms[0].S->m();
+  dst.reinit(n * m);
+  Vector<double> x(n), y(n), u(n);
+  std::vector<Vector<double>> Sy(m, Vector<double>(n));
+  for (const auto &t : terms)
+  {
+    for (unsigned int l = 0; l < m; ++l)
+    {
+      extract_block(src, l, m, x);
+      if (transpose)
+        t.S->Tvmult(Sy[l], x);
+      else
+        t.S->vmult(Sy[l], x);
+    }
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      u = 0.;
+      for (unsigned int l = 0; l < m; ++l)
+      {
+        const double c = transpose ? t.T(l, k) : t.T(k, l);
+        if (c != 0.)
+          u.add(c, Sy[l]);
+      }
+      for (types::global_dof_index i = 0; i < n; ++i)
+        dst(i * m + k) += u(i);
+    }
+  }
+}
+
+void extract_block(const Vector<double> &U, unsigned int k, unsigned int m, Vector<double> &u)
+{
+  const auto n = U.size() / m;
+  u.reinit(n);
+  for (types::global_dof_index i = 0; i < n; ++i)
+    u(i) = U(i * m + k);
+}
+
+void insert_block(const Vector<double> &u, unsigned int k, unsigned int m, Vector<double> &U)
+{
+  for (types::global_dof_index i = 0; i < u.size(); ++i)
+    U(i * m + k) = u(i);
+}
+
+void combine_blocks(const Vector<double> &U, const std::vector<double> &c, Vector<double> &u)
+{
+  const unsigned int m = c.size();
+  const auto n = U.size() / m;
+  u.reinit(n);
+  for (types::global_dof_index i = 0; i < n; ++i)
+  {
+    double v = 0.;
+    for (unsigned int k = 0; k < m; ++k)
+      v += c[k] * U(i * m + k);
+    u(i) = v;
+  }
+}
+} // namespace anisodwr

@@ -1,0 +1,91 @@
+#include "slab/primal_march.h"
+
+#include "config/errors.h"
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+template <int dim>
+void assemble_slab_load(const Space<dim> &space, const TemporalBasis &basis, double t0,
+                        double tau, Vector<double> &F)
+{
+  const unsigned int m = basis.n_dofs();
+  std::vector<double> sq, wq;
+  gauss_rule(m + 1, sq, wq);
+  F.reinit(space.n_dofs() * m);
+  Vector<double> Fq;
+  for (unsigned int q = 0; q < sq.size(); ++q)
+  {
+    space.assemble_load(t0 + sq[q] * tau, Fq);
+    const std::vector<double> l = basis.values(sq[q]);
+    for (types::global_dof_index i = 0; i < Fq.size(); ++i)
+      for (unsigned int k = 0; k < m; ++k)
+        F(i * m + k) += tau * wq[q] * l[k] * Fq(i);
+  }
+}
+
+namespace
+{
+std::string slab_name(const MarchOptions &o, unsigned int n, const TimeMesh &mesh)
+{
+  std::ostringstream s;
+  s << o.label << ", slab " << n + 1 << "/" << mesh.n_slabs() << " (t in [" << mesh.t[n]
+    << ", " << mesh.t[n + 1] << "])";
+  return s.str();
+}
+} // namespace
+
+template <int dim>
+std::vector<Vector<double>> march_primal(const Space<dim> &space, const TimeMesh &mesh,
+                                         const TemporalBasis &basis, SlabOperator<dim> &op,
+                                         const MarchOptions &options)
+{
+  const unsigned int m = basis.n_dofs();
+  std::vector<Vector<double>> U(mesh.n_slabs());
+  Vector<double> coupling, last, load;
+  space.assemble_initial(coupling); // (u_0, phi + delta b.grad phi)
+  for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+  {
+    const double t0 = mesh.start(n), tau = mesh.tau(n);
+    try
+    {
+      op.prepare(t0, tau);
+      if (n > 0)
+      {
+        combine_blocks(U[n - 1], basis.right_trace(), last); // u(t_{n-1}^-)
+        op.jump_mass().vmult(coupling, last);
+      }
+      assemble_slab_load(space, basis, t0, tau, load);
+      for (types::global_dof_index i = 0; i < coupling.size(); ++i)
+        for (unsigned int k = 0; k < m; ++k)
+          load(i * m + k) += basis.left_trace()[k] * coupling(i);
+      op.solve(load, U[n]);
+    }
+    catch (const NumericalError &)
+    {
+      throw;
+    }
+    catch (const std::exception &e)
+    {
+      throw NumericalError(slab_name(options, n, mesh) + ": slab solver failed: " + e.what());
+    }
+    if (!std::isfinite(U[n].l2_norm()))
+      throw NumericalError(slab_name(options, n, mesh) + ": primal solution contains NaN/Inf");
+    if (options.progress)
+      std::cout << "  [" << options.label << "] primal slab " << n + 1 << "/" << mesh.n_slabs()
+                << "  t = " << mesh.t[n + 1] << "  |U| = " << U[n].l2_norm() << std::endl;
+  }
+  return U;
+}
+
+template std::vector<Vector<double>> march_primal<2>(const Space<2> &, const TimeMesh &,
+                                                     const TemporalBasis &, SlabOperator<2> &,
+                                                     const MarchOptions &);
+template void assemble_slab_load<2>(const Space<2> &, const TemporalBasis &, double, double,
+                                    Vector<double> &);
+} // namespace anisodwr

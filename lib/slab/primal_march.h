@@ -1,0 +1,31 @@
+#pragma once
+// Forward march of the primal problem over all slabs (SPEC §2):
+//   K_n U_n = F_n + (e y^T (x) M(t_{n-1})) U_{n-1},   at n = 1 the SUPG initial term.
+#include "slab/slab_operator.h"
+#include "time/time_mesh.h"
+
+#include <string>
+#include <vector>
+
+namespace anisodwr
+{
+struct MarchOptions
+{
+  std::string label = "run"; ///< names the loop/level in progress lines and errors
+  bool progress = false;
+};
+
+/// Returns one interleaved coefficient vector per slab. Throws NumericalError naming
+/// the label and slab on solver failure or non-finite values.
+template <int dim>
+std::vector<dealii::Vector<double>> march_primal(const Space<dim> &space, const TimeMesh &mesh,
+                                                 const TemporalBasis &basis,
+                                                 SlabOperator<dim> &op,
+                                                 const MarchOptions &options);
+
+/// Slab load F_n: int_{I_n} l_k (F(t)) dt by (r+2)-point Gauss quadrature, F(t) the
+/// spatial load vector of Space::assemble_load.
+template <int dim>
+void assemble_slab_load(const Space<dim> &space, const TemporalBasis &basis, double t0,
+                        double tau, dealii::Vector<double> &F);
+} // namespace anisodwr

@@ -1,0 +1,224 @@
+#include "space/space.h"
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <cmath>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+namespace
+{
+template <int dim>
+class DirichletData : public Function<dim>
+{
+public:
+  DirichletData(const Scene<dim> &s, double t) : Function<dim>(1, t), scene(s) {}
+  double value(const Point<dim> &p, unsigned int) const override
+  {
+    return scene.dirichlet_value(p, this->get_time());
+  }
+
+private:
+  const Scene<dim> &scene;
+};
+
+template <int dim>
+class ExactFunction : public Function<dim>
+{
+public:
+  ExactFunction(const ExactSolution<dim> &u, double t) : Function<dim>(1, t), u(u) {}
+  double value(const Point<dim> &p, unsigned int) const override
+  {
+    return u.value(p, this->get_time());
+  }
+
+private:
+  const ExactSolution<dim> &u;
+};
+} // namespace
+
+template <int dim>
+Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria, unsigned int degree,
+                  double delta0)
+    : scene(scene), delta0(delta0), fe(degree), map(1), dofs(tria)
+{
+}
+
+template <int dim>
+void Space<dim>::setup()
+{
+  dofs.distribute_dofs(fe);
+  homogeneous.clear();
+  DoFTools::make_hanging_node_constraints(dofs, homogeneous);
+  for (const auto id : scene.dirichlet_ids)
+    VectorTools::interpolate_boundary_values(map, dofs, id, Functions::ZeroFunction<dim>(),
+                                             homogeneous);
+  homogeneous.close();
+  DynamicSparsityPattern dsp(dofs.n_dofs());
+  // keep_constrained_dofs = true: the unconstrained M, A live on the same pattern.
+  DoFTools::make_sparsity_pattern(dofs, dsp, homogeneous, true);
+  pattern.copy_from(dsp);
+}
+
+template <int dim>
+void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> &c) const
+{
+  c.clear();
+  DoFTools::make_hanging_node_constraints(dofs, c);
+  const DirichletData<dim> g(scene, t);
+  for (const auto id : scene.dirichlet_ids)
+    VectorTools::interpolate_boundary_values(map, dofs, id, g, c);
+  c.close();
+}
+
+template <int dim>
+double Space<dim>::delta(const typename Triangulation<dim>::cell_iterator &cell) const
+{
+  return delta0 * std::pow(cell->measure(), 1.0 / dim);
+}
+
+template <int dim>
+void Space<dim>::assemble_matrices(double t, SpatialMatrices &m) const
+{
+  for (auto *mat : {&m.M, &m.A, &m.Mc, &m.Ac})
+    mat->reinit(pattern);
+  const QGauss<dim> quad(fe.degree + 2);
+  FEValues<dim> fv(map, fe, quad,
+                   update_values | update_gradients | update_hessians |
+                     update_quadrature_points | update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  FullMatrix<double> cm(n, n), ca(n, n);
+  std::vector<types::global_dof_index> idx(n);
+  const double eps = scene.epsilon;
+  for (const auto &cell : dofs.active_cell_iterators())
+  {
+    fv.reinit(cell);
+    cm = 0.;
+    ca = 0.;
+    const double dK = delta(cell);
+    for (unsigned int q = 0; q < quad.size(); ++q)
+    {
+      const Point<dim> &x = fv.quadrature_point(q);
+      const Tensor<1, dim> b = scene.convection(x, t);
+      const double alpha = scene.reaction(x, t), JxW = fv.JxW(q);
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const double phi_i = fv.shape_value(i, q);
+        const Tensor<1, dim> grad_i = fv.shape_grad(i, q);
+        const double supg_i = dK * (b * grad_i);
+        for (unsigned int j = 0; j < n; ++j)
+        {
+          const double phi_j = fv.shape_value(j, q);
+          const Tensor<1, dim> grad_j = fv.shape_grad(j, q);
+          const double conv_react_j = b * grad_j + alpha * phi_j;
+          const double strong_j = -eps * trace(fv.shape_hessian(j, q)) + conv_react_j;
+          cm(i, j) += phi_j * (phi_i + supg_i) * JxW;
+          ca(i, j) += (eps * (grad_j * grad_i) + conv_react_j * phi_i + strong_j * supg_i) * JxW;
+        }
+      }
+    }
+    cell->get_dof_indices(idx);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+      {
+        m.M.add(idx[i], idx[j], cm(i, j));
+        m.A.add(idx[i], idx[j], ca(i, j));
+      }
+    homogeneous.distribute_local_to_global(cm, idx, m.Mc);
+    homogeneous.distribute_local_to_global(ca, idx, m.Ac);
+  }
+}
+
+template <int dim>
+void Space<dim>::assemble_load(double t, Vector<double> &F) const
+{
+  F.reinit(dofs.n_dofs());
+  const QGauss<dim> quad(fe.degree + 2);
+  const QGauss<dim - 1> fquad(fe.degree + 2);
+  FEValues<dim> fv(map, fe, quad,
+                   update_values | update_gradients | update_quadrature_points |
+                     update_JxW_values);
+  FEFaceValues<dim> ffv(map, fe, fquad,
+                        update_values | update_quadrature_points | update_normal_vectors |
+                          update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  Vector<double> cf(n);
+  std::vector<types::global_dof_index> idx(n);
+  for (const auto &cell : dofs.active_cell_iterators())
+  {
+    fv.reinit(cell);
+    cf = 0.;
+    const double dK = delta(cell);
+    for (unsigned int q = 0; q < quad.size(); ++q)
+    {
+      const Point<dim> &x = fv.quadrature_point(q);
+      const Tensor<1, dim> b = scene.convection(x, t);
+      const double f = scene.rhs(x, t) * fv.JxW(q);
+      for (unsigned int i = 0; i < n; ++i)
+        cf(i) += f * (fv.shape_value(i, q) + dK * (b * fv.shape_grad(i, q)));
+    }
+    if (!scene.neumann_ids.empty())
+      for (const auto face : cell->face_indices())
+        if (cell->at_boundary(face) && scene.neumann_ids.count(cell->face(face)->boundary_id()))
+        {
+          ffv.reinit(cell, face);
+          for (unsigned int q = 0; q < fquad.size(); ++q)
+          {
+            const double g =
+              scene.neumann_value(ffv.quadrature_point(q), ffv.normal_vector(q), t) * ffv.JxW(q);
+            for (unsigned int i = 0; i < n; ++i)
+              cf(i) += g * ffv.shape_value(i, q);
+          }
+        }
+    cell->get_dof_indices(idx);
+    for (unsigned int i = 0; i < n; ++i)
+      F(idx[i]) += cf(i);
+  }
+}
+
+template <int dim>
+void Space<dim>::assemble_initial(Vector<double> &U0) const
+{
+  U0.reinit(dofs.n_dofs());
+  const QGauss<dim> quad(fe.degree + 2);
+  FEValues<dim> fv(map, fe, quad,
+                   update_values | update_gradients | update_quadrature_points |
+                     update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  std::vector<types::global_dof_index> idx(n);
+  for (const auto &cell : dofs.active_cell_iterators())
+  {
+    fv.reinit(cell);
+    cell->get_dof_indices(idx);
+    const double dK = delta(cell);
+    for (unsigned int q = 0; q < quad.size(); ++q)
+    {
+      const Point<dim> &x = fv.quadrature_point(q);
+      const Tensor<1, dim> b = scene.convection(x, 0.);
+      const double u0 = scene.initial_value(x) * fv.JxW(q);
+      for (unsigned int i = 0; i < n; ++i)
+        U0(idx[i]) += u0 * (fv.shape_value(i, q) + dK * (b * fv.shape_grad(i, q)));
+    }
+  }
+}
+
+template <int dim>
+double Space<dim>::l2_error(const Vector<double> &uh, double t) const
+{
+  const ExactFunction<dim> u(*scene.exact(), t);
+  Vector<float> cellwise(dofs.get_triangulation().n_active_cells());
+  VectorTools::integrate_difference(map, dofs, uh, u, cellwise, QGauss<dim>(fe.degree + 3),
+                                    VectorTools::L2_norm);
+  return VectorTools::compute_global_error(dofs.get_triangulation(), cellwise,
+                                           VectorTools::L2_norm);
+}
+
+template class Space<2>;
+} // namespace anisodwr

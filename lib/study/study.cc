@@ -1,0 +1,205 @@
+#include "study/study.h"
+
+#include "config/errors.h"
+#include "io/table.h"
+#include "io/vtu.h"
+#include "scene/scene.h"
+#include "slab/primal_march.h"
+#include "study/errors.h"
+
+#include <deal.II/base/timer.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+namespace
+{
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+struct LevelResult
+{
+  unsigned int level = 0;
+  double h = 0, tau = 0;
+  types::global_dof_index n_space = 0, n_tot = 0;
+  unsigned int n_t = 0;
+  ErrorNorms err;
+  bool has_exact = false;
+  double t_total = 0;
+  SlabTimings slab;
+  std::vector<std::string> vtu_files;
+};
+
+std::string num(double v)
+{
+  if (!std::isfinite(v))
+    return "null";
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+std::string level_json(const LevelResult &r)
+{
+  std::ostringstream s;
+  s << "{\"level\": " << r.level << ", \"h\": " << num(r.h) << ", \"tau\": " << num(r.tau)
+    << ", \"N_space\": " << r.n_space << ", \"N_t\": " << r.n_t << ", \"N_tot\": " << r.n_tot;
+  if (r.has_exact)
+    s << ", \"err_L2_T\": " << num(r.err.L2_T) << ", \"err_nodal\": " << num(r.err.nodal)
+      << ", \"err_L2L2\": " << num(r.err.L2L2);
+  s << ", \"wall_time\": {\"total\": " << num(r.t_total)
+    << ", \"assemble_spatial\": " << num(r.slab.assemble_spatial)
+    << ", \"assemble_slab\": " << num(r.slab.assemble_slab)
+    << ", \"factorize\": " << num(r.slab.factorize) << ", \"solve\": " << num(r.slab.solve)
+    << "}, \"factorizations\": " << r.slab.n_factorizations << "}";
+  return s.str();
+}
+
+/// Solves the primal problem on the scene's mesh refined `refinements` times with
+/// `n_slabs` equal slabs.
+LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned int level,
+                        unsigned int refinements, unsigned int n_slabs, bool write_vtu_files)
+{
+  Timer timer;
+  LevelResult res;
+  res.level = level;
+  Triangulation<2> tria;
+  scene.make_coarse_grid(tria);
+  tria.refine_global(refinements);
+  Space<2> space(scene, tria, prm.p, prm.delta0);
+  space.setup();
+  const TemporalBasis basis(prm.r);
+  const TimeMesh mesh = TimeMesh::uniform(scene.end_time, n_slabs);
+  SlabOperator<2> op(space, basis, prm.reuse_factorization);
+  MarchOptions opt;
+  opt.label = prm.mode == "convergence" ? "level " + std::to_string(level) : "run";
+  opt.progress = prm.progress;
+  const auto U = march_primal(space, mesh, basis, op, opt);
+  res.t_total = timer.wall_time();
+  res.slab = op.timings();
+  res.h = GridTools::maximal_cell_diameter(tria);
+  res.tau = mesh.max_tau();
+  res.n_space = space.n_dofs();
+  res.n_t = mesh.n_slabs();
+  res.n_tot = res.n_space * res.n_t * basis.n_dofs();
+  res.has_exact = scene.exact() != nullptr;
+  if (res.has_exact)
+    res.err = compute_errors(space, mesh, basis, U);
+  if (write_vtu_files && prm.vtu_every > 0)
+  {
+    std::vector<std::pair<double, std::string>> records;
+    Vector<double> u;
+    for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+      if ((n + 1) % prm.vtu_every == 0 || n + 1 == mesh.n_slabs())
+      {
+        combine_blocks(U[n], basis.right_trace(), u);
+        records.emplace_back(mesh.t[n + 1],
+                             write_vtu(space, u, mesh.t[n + 1], prm.output_directory,
+                                       "solution", n + 1));
+        res.vtu_files.push_back(records.back().second);
+      }
+    write_pvd(prm.output_directory, "solution", records);
+  }
+  return res;
+}
+
+double order(double e_coarse, double e_fine, double ratio)
+{
+  if (!(e_coarse > 0 && e_fine > 0) || ratio <= 1.)
+    return nan;
+  return std::log(e_coarse / e_fine) / std::log(ratio);
+}
+
+void write_summary(const Parameters &prm, const std::vector<LevelResult> &levels,
+                   const std::string &status, double wall)
+{
+  std::ofstream f(prm.output_directory + "/summary.json");
+  f << "{\n  \"status\": \"" << status << "\",\n  \"config\": " << prm.to_json(2)
+    << ",\n  \"levels\": [";
+  for (std::size_t i = 0; i < levels.size(); ++i)
+    f << (i ? ",\n    " : "\n    ") << level_json(levels[i]);
+  f << "\n  ],\n  \"wall_time\": " << num(wall) << ",\n  \"peak_memory_mb\": "
+    << num(peak_memory_mb()) << "\n}\n";
+}
+
+std::string json_escape(const std::string &s)
+{
+  std::string o;
+  for (char c : s)
+    if (c == '"' || c == '\\')
+      o += std::string("\\") + c;
+    else if (c == '\n')
+      o += "\\n";
+    else
+      o += c;
+  return o;
+}
+} // namespace
+
+void run_study(const Parameters &prm)
+{
+  make_directory(prm.output_directory);
+  const auto scene = create_scene<2>(prm);
+  Timer timer;
+  std::vector<LevelResult> levels;
+  try
+  {
+    if (prm.mode == "single")
+    {
+      levels.push_back(
+        solve_level(prm, *scene, 0, prm.initial_refinements, prm.n_slabs, true));
+      const auto &r = levels.back();
+      std::cout << "N_space = " << r.n_space << ", N_t = " << r.n_t << ", N_tot = " << r.n_tot
+                << ", wall time " << r.t_total << " s\n";
+      if (r.has_exact)
+        std::cout << "err_L2_T = " << r.err.L2_T << ", err_nodal = " << r.err.nodal
+                  << ", err_L2L2 = " << r.err.L2L2 << "\n";
+    }
+    else
+    {
+      const bool space = prm.refine != "time", time = prm.refine != "space";
+      CsvTable table(prm.output_directory + "/convergence.csv",
+                     {"level", "h", "tau", "N_space", "N_t", "N_tot", "err_L2_T", "err_nodal",
+                      "err_L2L2", "order_L2_T", "order_nodal", "order_L2L2", "wall_time"});
+      for (unsigned int l = 0; l < prm.levels; ++l)
+      {
+        levels.push_back(solve_level(prm, *scene, l, prm.initial_refinements + (space ? l : 0),
+                                     prm.n_slabs << (time ? l : 0), false));
+        const auto &r = levels.back();
+        std::array<double, 3> o{{nan, nan, nan}};
+        if (l > 0)
+        {
+          const auto &c = levels[l - 1];
+          const double ratio = space ? c.h / r.h : c.tau / r.tau;
+          o = {{order(c.err.L2_T, r.err.L2_T, ratio), order(c.err.nodal, r.err.nodal, ratio),
+               order(c.err.L2L2, r.err.L2L2, ratio)}};
+        }
+        const double e = r.has_exact ? 1. : nan;
+        table.add_row({double(l), r.h, r.tau, double(r.n_space), double(r.n_t),
+                       double(r.n_tot), e * r.err.L2_T, e * r.err.nodal, e * r.err.L2L2, o[0],
+                       o[1], o[2], r.t_total});
+        std::cout << "level " << l << ": N_space = " << r.n_space << ", N_t = " << r.n_t
+                  << ", err_L2_T = " << r.err.L2_T << ", err_nodal = " << r.err.nodal
+                  << ", err_L2L2 = " << r.err.L2L2 << ", orders " << o[0] << " " << o[1]
+                  << " " << o[2] << std::endl;
+      }
+      std::cout << "table: " << table.path() << "\n";
+    }
+  }
+  catch (const std::exception &e)
+  {
+    write_summary(prm, levels, "failed: " + json_escape(e.what()), timer.wall_time());
+    throw;
+  }
+  write_summary(prm, levels, "ok", timer.wall_time());
+}
+} // namespace anisodwr
