@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Every class of bad input gives exit code 2 and a message naming the key/file/value.
+set -u
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+
+expect() { # expect CODE PATTERN -- args...
+  local code=$1 pattern=$2
+  shift 3
+  local out rc
+  out=$("$bin" "$@" 2>&1)
+  rc=$?
+  if [ "$rc" != "$code" ] || ! grep -q -- "$pattern" <<<"$out"; then
+    echo "FAIL: anisodwr $* -> exit $rc (want $code), output: $out (want /$pattern/)"
+    fail=1
+  else
+    echo "ok: anisodwr $* -> $rc: $(head -c 160 <<<"$out")"
+  fi
+}
+
+cfg=$src/config/moving_hump.json
+printf '{ "scene": { "name": "moving_hump", ' >"$tmp/broken.json"
+printf '{ "discretization": { "pp": 2 } }' >"$tmp/typo.json"
+printf '{ "scenery": { "name": "heat" } }' >"$tmp/section.json"
+
+expect 2 "nonexistent.json" -- run "$tmp/nonexistent.json"
+expect 2 "invalid JSON" -- run "$tmp/broken.json"
+expect 2 "discretization.pp.*did you mean 'p'" -- run "$tmp/typo.json"
+expect 2 "unknown section 'scenery'" -- run "$tmp/section.json"
+expect 2 "scene.epsilon" -- run "$cfg" --set scene.epsilon=0
+expect 2 "scene.epsilon" -- run "$cfg" --set scene.epsilon=-1
+expect 2 "discretization.r" -- run "$cfg" --set discretization.r=-1
+expect 2 "discretization.p" -- run "$cfg" --set discretization.p=abc
+expect 2 "scene.name" -- run "$cfg" --set scene.name=hemkerr
+expect 2 "scene.variant" -- run "$cfg" --set scene.name=heat --set scene.variant=cubic
+expect 2 "section.key=value" -- run "$cfg" --set epsilon
+expect 2 "unknown option" -- run "$cfg" --bogus
+expect 2 "unknown command" -- frobnicate
+expect 0 "anisodwr run" -- --help
+
+# `defaults` prints a config that loads and runs.
+"$bin" defaults >"$tmp/defaults.json" || fail=1
+expect 0 "results:" -- run "$tmp/defaults.json" --output "$tmp/out" --set output.vtu_every=0 \
+  --set output.progress=false
+[ -s "$tmp/out/summary.json" ] || { echo "FAIL: no summary.json"; fail=1; }
+exit $fail

@@ -1,0 +1,227 @@
+// The Kronecker slab operator against a direct space-time assembly, and exactness
+// of cG(p)-dG(r) on solutions that are polynomials of degree r in t and lie in
+// the FE space in x (hanging nodes, inhomogeneous time-dependent Dirichlet data,
+// Neumann data, time-dependent b and alpha, SUPG on).
+#include "slab/primal_march.h"
+#include "study/errors.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace anisodwr;
+using namespace dealii;
+
+namespace
+{
+/// u = X(x,y) T(t), X = 1 + x + 2 y^2 + x y (in Q2), T(t) = sum_{j<=r} (j+1) t^j / 2^j.
+class PolySolution : public ExactSolution<2>
+{
+public:
+  explicit PolySolution(unsigned int r) : r(r) {}
+  double value(const Point<2> &p, double t) const override { return X(p) * T(t); }
+  Tensor<1, 2> gradient(const Point<2> &p, double t) const override
+  {
+    return Tensor<1, 2>({(1. + p[1]) * T(t), (4. * p[1] + p[0]) * T(t)});
+  }
+  double laplacian(const Point<2> &, double t) const override { return 4. * T(t); }
+  double time_derivative(const Point<2> &p, double t) const override { return X(p) * dT(t); }
+
+private:
+  unsigned int r;
+  static double X(const Point<2> &p) { return 1. + p[0] + 2. * p[1] * p[1] + p[0] * p[1]; }
+  double T(double t) const
+  {
+    double v = 0;
+    for (unsigned int j = 0; j <= r; ++j)
+      v += (j + 1.) * std::pow(t / 2., j);
+    return v;
+  }
+  double dT(double t) const
+  {
+    double v = 0;
+    for (unsigned int j = 1; j <= r; ++j)
+      v += (j + 1.) * j * std::pow(t / 2., j - 1) / 2.;
+    return v;
+  }
+};
+
+/// Unit square, boundary ids 0..3 (left, right, bottom, top); Neumann on the right.
+class PolyScene : public Scene<2>
+{
+public:
+  PolyScene(unsigned int r, double eps)
+  {
+    epsilon = eps;
+    end_time = 1.;
+    dirichlet_ids = {0, 2, 3};
+    neumann_ids = {1};
+    exact_solution = std::make_unique<PolySolution>(r);
+  }
+  std::string name() const override { return "poly"; }
+  void make_coarse_grid(Triangulation<2> &tria) const override
+  {
+    GridGenerator::hyper_cube(tria, 0., 1., true);
+  }
+  Tensor<1, 2> convection(const Point<2> &p, double t) const override
+  {
+    return Tensor<1, 2>({-(p[1] - 0.5) * (1. + t), (p[0] - 0.5) * (1. + t)});
+  }
+  double reaction(const Point<2> &, double t) const override { return 1. + t; }
+  bool coefficients_depend_on_time() const override { return true; }
+};
+
+/// 2x2 mesh with one cell cut in x and one of its children cut in y: hanging nodes
+/// and anisotropic cells.
+void make_mesh(const Scene<2> &scene, Triangulation<2> &tria)
+{
+  scene.make_coarse_grid(tria);
+  tria.refine_global(1);
+  tria.begin_active()->set_refine_flag(RefinementCase<2>::cut_x);
+  tria.execute_coarsening_and_refinement();
+  tria.begin_active(1)->set_refine_flag(RefinementCase<2>::cut_y);
+  tria.execute_coarsening_and_refinement();
+}
+
+/// Direct space-time assembly of the unconstrained slab matrix (reference).
+FullMatrix<double> direct_slab_matrix(const Space<2> &space, const TemporalBasis &basis,
+                                      double delta0, double t0, double tau)
+{
+  const Scene<2> &scene = space.scene;
+  const unsigned int m = basis.n_dofs(), nd = space.n_dofs();
+  FullMatrix<double> K(nd * m, nd * m);
+  const QGauss<2> qx(space.degree() + 2);
+  std::vector<double> st, wt;
+  gauss_rule(m + 2, st, wt);
+  FEValues<2> fv(space.mapping(), space.finite_element(), qx,
+                 update_values | update_gradients | update_hessians | update_quadrature_points |
+                   update_JxW_values);
+  const unsigned int n = space.finite_element().n_dofs_per_cell();
+  std::vector<types::global_dof_index> idx(n);
+  for (const auto &cell : space.dof_handler().active_cell_iterators())
+  {
+    fv.reinit(cell);
+    cell->get_dof_indices(idx);
+    const double dK = delta0 * std::sqrt(cell->measure());
+    for (unsigned int q = 0; q < qx.size(); ++q)
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j < n; ++j)
+        {
+          const Point<2> &x = fv.quadrature_point(q);
+          const double pi = fv.shape_value(i, q), pj = fv.shape_value(j, q);
+          const auto gi = fv.shape_grad(i, q), gj = fv.shape_grad(j, q);
+          const double lap_j = trace(fv.shape_hessian(j, q));
+          for (unsigned int k = 0; k < m; ++k)
+            for (unsigned int l = 0; l < m; ++l)
+            {
+              double v = 0;
+              for (unsigned int a = 0; a < st.size(); ++a)
+              {
+                const double t = t0 + st[a] * tau;
+                const auto b = scene.convection(x, t);
+                const double al = scene.reaction(x, t), test = pi + dK * (b * gi);
+                const double lk = basis.value(k, st[a]), ll = basis.value(l, st[a]);
+                const double dll = basis.derivative(l, st[a]) / tau;
+                const double strong = -scene.epsilon * lap_j + b * gj + al * pj;
+                v += tau * wt[a] *
+                     (dll * lk * pj * test +
+                      lk * ll *
+                        (scene.epsilon * (gj * gi) + (b * gj + al * pj) * pi +
+                         dK * strong * (b * gi)));
+              }
+              const auto b0 = scene.convection(x, t0);
+              v += basis.value(k, 0.) * basis.value(l, 0.) * pj * (pi + dK * (b0 * gi));
+              K(idx[i] * m + k, idx[j] * m + l) += v * fv.JxW(q);
+            }
+        }
+  }
+  return K;
+}
+} // namespace
+
+class SlabByDegree : public ::testing::TestWithParam<std::tuple<unsigned int, double>>
+{
+};
+
+TEST_P(SlabByDegree, KroneckerEqualsDirectSpaceTimeAssembly)
+{
+  const auto [r, delta0] = GetParam();
+  const PolyScene scene(r, 0.1);
+  Triangulation<2> tria;
+  make_mesh(scene, tria);
+  Space<2> space(scene, tria, 2, delta0);
+  space.setup();
+  const TemporalBasis basis(r);
+  SlabOperator<2> op(space, basis, true);
+  const double t0 = 0.3, tau = 0.25;
+  op.prepare(t0, tau);
+  SparsityPattern sp;
+  make_kron_sparsity(space.sparsity(), basis.n_dofs(), sp);
+  SparseMatrix<double> K;
+  assemble_kron(op.full_terms(), sp, K);
+  const FullMatrix<double> Kd = direct_slab_matrix(space, basis, delta0, t0, tau);
+  double max_diff = 0, max_entry = 0;
+  for (unsigned int i = 0; i < Kd.m(); ++i)
+    for (unsigned int j = 0; j < Kd.n(); ++j)
+    {
+      max_diff = std::max(max_diff, std::abs(K.el(i, j) - Kd(i, j)));
+      max_entry = std::max(max_entry, std::abs(Kd(i, j)));
+    }
+  EXPECT_LT(max_diff, 1e-12 * max_entry) << "r = " << r << ", delta0 = " << delta0;
+
+  // The matrix-free Kronecker product agrees with the assembled matrix (and its transpose).
+  std::mt19937 gen(42);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  Vector<double> x(K.m()), y1, y2(K.m());
+  for (auto &v : x)
+    v = dist(gen);
+  vmult_kron(op.full_terms(), x, y1);
+  K.vmult(y2, x);
+  y2 -= y1;
+  EXPECT_LT(y2.linfty_norm(), 1e-12 * max_entry * x.l1_norm());
+  vmult_kron(op.full_terms(), x, y1, true);
+  K.Tvmult(y2, x);
+  y2 -= y1;
+  EXPECT_LT(y2.linfty_norm(), 1e-12 * max_entry * x.l1_norm());
+}
+
+INSTANTIATE_TEST_SUITE_P(RAndSupg, SlabByDegree,
+                         ::testing::Combine(::testing::Values(0u, 1u, 2u),
+                                            ::testing::Values(0.0, 1.0)));
+
+class ExactnessByDegree : public ::testing::TestWithParam<unsigned int>
+{
+};
+
+TEST_P(ExactnessByDegree, PolynomialInTimeAndInFESpaceIsReproduced)
+{
+  const unsigned int r = GetParam();
+  const PolyScene scene(r, 0.05);
+  Triangulation<2> tria;
+  make_mesh(scene, tria);
+  Space<2> space(scene, tria, 2, 1.0);
+  space.setup();
+  const TemporalBasis basis(r);
+  const TimeMesh mesh = TimeMesh::uniform(1.0, 3);
+  SlabOperator<2> op(space, basis, true);
+  const auto U = march_primal(space, mesh, basis, op, MarchOptions{});
+  const ErrorNorms e = compute_errors(space, mesh, basis, U);
+  EXPECT_LT(e.nodal, 1e-10);
+  EXPECT_LT(e.L2L2, 1e-10);
+  // dG(r-1) cannot reproduce a degree-r polynomial in time: the test can fail.
+  if (r > 0)
+  {
+    const TemporalBasis lower(r - 1);
+    SlabOperator<2> op2(space, lower, true);
+    const auto U2 = march_primal(space, mesh, lower, op2, MarchOptions{});
+    EXPECT_GT(compute_errors(space, mesh, lower, U2).L2L2, 1e-6);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(R, ExactnessByDegree, ::testing::Values(0u, 1u, 2u, 3u));
