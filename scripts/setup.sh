@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Shared by run.sh and test.sh: installs missing Debian packages (idempotent) and
+# configures + builds anisodwr in Release into build/. Usage: source scripts/setup.sh
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+PACKAGES="libdeal.ii-dev libgtest-dev cmake g++ make ccache python3-matplotlib"
+
+missing=""
+for p in $PACKAGES; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  echo "== installing Debian packages:$missing (deal.II takes ~2 minutes)"
+  SUDO=""
+  [ "$(id -u)" = 0 ] || SUDO=sudo
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
+fi
+
+BUILD=${ANISODWR_BUILD_DIR:-$ROOT/build}
+if [ ! -f "$BUILD/CMakeCache.txt" ]; then
+  echo "== configuring (Release) in $BUILD"
+  cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+fi
+echo "== building (-j2)"
+cmake --build "$BUILD" -j2 -- --no-print-directory | grep -E "error|warning|Linking" || true
+test -x "$BUILD/app/anisodwr" || { echo "build failed" >&2; exit 1; }
