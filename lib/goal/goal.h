@@ -1,0 +1,52 @@
+#pragma once
+// Linear goal functionals J(u) = int_I j_t(u(t)) dt + j_T(u(T)) (SPEC §3) and the
+// mollifier delta_{s,c}(x) = C exp(1 - 1/(1 - |x-c|^2/s^2)) with int delta = 1.
+#include "space/space.h"
+#include "time/temporal_basis.h"
+#include "time/time_mesh.h"
+
+#include <string>
+#include <vector>
+
+namespace anisodwr
+{
+/// C such that the mollifier of radius s integrates to 1 over R^dim (computed by
+/// quadrature of the radial profile, not hard-coded).
+double mollifier_constant(unsigned int dim, double s);
+
+template <int dim>
+double mollifier(const dealii::Point<dim> &x, const dealii::Point<dim> &c, double s, double C);
+
+struct GoalSpec
+{
+  std::string name;
+  std::string kind = "point"; ///< point (mollified, s = 0: Dirac) or mean (over a rectangle)
+  bool over_time = false;     ///< true: int_I j(u(t)) dt; false: j(u(T))
+  std::vector<double> center; ///< point goals
+  double radius = 0;          ///< mollifier radius s
+  std::vector<double> lower, upper; ///< mean goals: the rectangle
+  double weight = 1;
+};
+
+/// j_i = j(phi_i) for the spatial functional of the goal.
+template <int dim>
+void assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal,
+                          dealii::Vector<double> &j);
+
+/// The split of a (weighted sum of) goal(s) into its time-integrated and end-time parts.
+struct GoalVectors
+{
+  dealii::Vector<double> over_time, at_end; ///< empty if the part is absent
+};
+
+template <int dim>
+GoalVectors assemble_goal_vectors(const Space<dim> &space, const std::vector<GoalSpec> &goals);
+
+/// J(u_h) for slab coefficient vectors U (interleaved).
+double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh, const TemporalBasis &basis,
+                     const std::vector<dealii::Vector<double>> &U);
+
+/// Adjoint right-hand side of slab n: int_{I_n} l_k j_t dt (+ y_k j_T on the last slab).
+void slab_goal_rhs(const GoalVectors &j, const TimeMesh &mesh, const TemporalBasis &basis,
+                   unsigned int n, dealii::Vector<double> &rhs);
+} // namespace anisodwr

@@ -1,0 +1,57 @@
+#include "slab/adjoint_march.h"
+
+#include "config/errors.h"
+
+#include <cmath>
+#include <iostream>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+template <int dim>
+std::vector<Vector<double>> march_adjoint(const Space<dim> &space, const TimeMesh &mesh,
+                                          const TemporalBasis &basis, SlabOperator<dim> &op,
+                                          const GoalVectors &goal, const MarchOptions &options)
+{
+  const unsigned int m = basis.n_dofs(), N = mesh.n_slabs();
+  std::vector<Vector<double>> Z(N);
+  Vector<double> coupling(space.n_dofs()), first, rhs;
+  for (unsigned int n = N; n-- > 0;)
+  {
+    try
+    {
+      op.prepare(mesh.start(n), mesh.tau(n));
+      slab_goal_rhs(goal, mesh, basis, n, rhs);
+      if (n + 1 < N)
+        for (types::global_dof_index i = 0; i < coupling.size(); ++i)
+          for (unsigned int k = 0; k < m; ++k)
+            rhs(i * m + k) += basis.right_trace()[k] * coupling(i);
+      op.solve(rhs, Z[n], true);
+      // M(t_{n-1})^T z(t_{n-1}^+): the coupling into slab n-1, computed while the
+      // operator still holds slab n's jump mass.
+      combine_blocks(Z[n], basis.left_trace(), first);
+      op.jump_mass().Tvmult(coupling, first);
+    }
+    catch (const NumericalError &)
+    {
+      throw;
+    }
+    catch (const std::exception &e)
+    {
+      throw NumericalError(options.label + ", adjoint slab " + std::to_string(n + 1) + "/" +
+                           std::to_string(N) + ": slab solver failed: " + e.what());
+    }
+    if (!std::isfinite(Z[n].l2_norm()))
+      throw NumericalError(options.label + ", adjoint slab " + std::to_string(n + 1) + "/" +
+                           std::to_string(N) + ": adjoint solution contains NaN/Inf");
+    if (options.progress)
+      std::cout << "  [" << options.label << "] adjoint slab " << n + 1 << "/" << N << std::endl;
+  }
+  return Z;
+}
+
+template std::vector<Vector<double>> march_adjoint<2>(const Space<2> &, const TimeMesh &,
+                                                      const TemporalBasis &, SlabOperator<2> &,
+                                                      const GoalVectors &, const MarchOptions &);
+} // namespace anisodwr

@@ -1,0 +1,15 @@
+#pragma once
+// Backward march of the adjoint of the stabilized discrete problem (SPEC §4):
+//   K_n^T Z_n = J_n + (y e^T (x) M(t_n)^T) Z_{n+1},   Z_{N+1} = 0,
+// with the same SlabOperator code (transposed solve) in the adjoint space.
+#include "goal/goal.h"
+#include "slab/primal_march.h"
+
+namespace anisodwr
+{
+template <int dim>
+std::vector<dealii::Vector<double>> march_adjoint(const Space<dim> &space, const TimeMesh &mesh,
+                                                  const TemporalBasis &basis,
+                                                  SlabOperator<dim> &op, const GoalVectors &goal,
+                                                  const MarchOptions &options);
+} // namespace anisodwr

@@ -1,0 +1,160 @@
+// Goal functionals and the adjoint march (SPEC §3-4): the mollifier integrates to 1,
+// the transposed space-time operator is the transpose, and with q = p the goal value
+// J(u_h) = <J, U> equals the adjoint form <F, Z>.
+#include "config/parameters.h"
+#include "goal/goal.h"
+#include "slab/adjoint_march.h"
+
+#include <deal.II/grid/tria.h>
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace anisodwr;
+using namespace dealii;
+
+namespace
+{
+std::unique_ptr<Scene<2>> manufactured()
+{
+  return create_scene<2>(Parameters::from_overrides(
+    {"scene.name=manufactured", "scene.variant=constant", "scene.epsilon=0.01"}));
+}
+
+void make_mesh(const Scene<2> &scene, Triangulation<2> &tria)
+{
+  scene.make_coarse_grid(tria);
+  tria.refine_global(2);
+  tria.begin_active()->set_refine_flag(RefinementCase<2>::cut_x);
+  tria.execute_coarsening_and_refinement();
+}
+
+std::vector<GoalSpec> goals()
+{
+  GoalSpec a, b, c;
+  a.name = "point_T";
+  a.center = {0.4, 0.55};
+  a.radius = 0.15;
+  b.name = "mean_I";
+  b.kind = "mean";
+  b.over_time = true;
+  b.lower = {0.1, 0.2};
+  b.upper = {0.6, 0.7};
+  b.weight = 0.5;
+  c.name = "dirac_I";
+  c.center = {0.3, 0.3};
+  c.over_time = true;
+  return {a, b, c};
+}
+} // namespace
+
+TEST(Mollifier, IntegratesToOne)
+{
+  const auto scene = manufactured();
+  Triangulation<2> tria;
+  make_mesh(*scene, tria);
+  for (unsigned int p : {1u, 2u})
+    for (double s : {0.05, 0.2})
+    {
+      Space<2> space(*scene, tria, p, 0.);
+      space.setup();
+      GoalSpec g;
+      g.center = {0.45, 0.5};
+      g.radius = s;
+      Vector<double> j;
+      assemble_goal_vector(space, g, j);
+      // sum_i phi_i = 1, so sum_i j(phi_i) = int delta.
+      double sum = 0;
+      for (const double v : j)
+        sum += v;
+      EXPECT_NEAR(sum, 1., 1e-6) << "p = " << p << ", s = " << s;
+    }
+}
+
+TEST(Adjoint, TransposedSpaceTimeOperator)
+{
+  const auto scene = manufactured();
+  Triangulation<2> tria;
+  make_mesh(*scene, tria);
+  Space<2> space(*scene, tria, 1, 1.0);
+  space.setup();
+  const TemporalBasis basis(2);
+  const unsigned int m = basis.n_dofs(), N = 3;
+  SlabOperator<2> op(space, basis, true);
+  op.prepare(0., 0.1);
+  const auto &M = op.jump_mass();
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> d(-1., 1.);
+  std::vector<Vector<double>> U(N, Vector<double>(space.n_dofs() * m)), Z = U;
+  for (auto *v : {&U, &Z})
+    for (auto &x : *v)
+      for (auto &e : x)
+        e = d(gen);
+  // (K U)_n = K_n U_n - (e y^T (x) M) U_{n-1};  (K^T Z)_n = K_n^T Z_n - (y e^T (x) M^T) Z_{n+1}
+  double lhs = 0, rhs = 0;
+  Vector<double> y, trace, c(space.n_dofs());
+  for (unsigned int n = 0; n < N; ++n)
+  {
+    vmult_kron(op.full_terms(), U[n], y);
+    if (n > 0)
+    {
+      combine_blocks(U[n - 1], basis.right_trace(), trace);
+      M.vmult(c, trace);
+      for (unsigned int i = 0; i < c.size(); ++i)
+        for (unsigned int k = 0; k < m; ++k)
+          y(i * m + k) -= basis.left_trace()[k] * c(i);
+    }
+    lhs += y * Z[n];
+    vmult_kron(op.full_terms(), Z[n], y, true);
+    if (n + 1 < N)
+    {
+      combine_blocks(Z[n + 1], basis.left_trace(), trace);
+      M.Tvmult(c, trace);
+      for (unsigned int i = 0; i < c.size(); ++i)
+        for (unsigned int k = 0; k < m; ++k)
+          y(i * m + k) -= basis.right_trace()[k] * c(i);
+    }
+    rhs += y * U[n];
+  }
+  EXPECT_NEAR(lhs, rhs, 1e-11 * std::abs(lhs));
+}
+
+class AdjointGoal : public ::testing::TestWithParam<unsigned int>
+{
+};
+
+TEST_P(AdjointGoal, PrimalGoalEqualsAdjointFormWithEqualSpaces)
+{
+  const unsigned int r = GetParam();
+  const auto scene = manufactured();
+  Triangulation<2> tria;
+  make_mesh(*scene, tria);
+  Space<2> space(*scene, tria, 2, 1.0);
+  space.setup();
+  const TemporalBasis basis(r);
+  const TimeMesh mesh = TimeMesh::uniform(0.5, 4);
+  SlabOperator<2> op(space, basis, true);
+  const auto U = march_primal(space, mesh, basis, op, MarchOptions{});
+  const GoalVectors j = assemble_goal_vectors(space, goals());
+  const auto Z = march_adjoint(space, mesh, basis, op, j, MarchOptions{});
+  const double J_primal = evaluate_goal(j, mesh, basis, U);
+  // <F, Z>: slab loads plus the SUPG initial term on the first slab.
+  const unsigned int m = basis.n_dofs();
+  Vector<double> F, u0;
+  space.assemble_initial(u0);
+  double J_adjoint = 0;
+  for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+  {
+    assemble_slab_load(space, basis, mesh.start(n), mesh.tau(n), F);
+    if (n == 0)
+      for (unsigned int i = 0; i < u0.size(); ++i)
+        for (unsigned int k = 0; k < m; ++k)
+          F(i * m + k) += basis.left_trace()[k] * u0(i);
+    J_adjoint += F * Z[n];
+  }
+  EXPECT_NEAR(J_primal, J_adjoint, 1e-10 * std::abs(J_primal)) << "r = " << r;
+  EXPECT_GT(std::abs(J_primal), 1e-2);
+}
+
+INSTANTIATE_TEST_SUITE_P(R, AdjointGoal, ::testing::Values(0u, 1u, 2u));
