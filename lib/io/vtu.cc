@@ -12,20 +12,6 @@ namespace anisodwr
 {
 using namespace dealii;
 
-namespace
-{
-template <int dim>
-class ExactAt : public Function<dim>
-{
-public:
-  ExactAt(const ExactSolution<dim> &u, double t) : u(u), t(t) {}
-  double value(const Point<dim> &p, unsigned int) const override { return u.value(p, t); }
-
-private:
-  const ExactSolution<dim> &u;
-  double t;
-};
-} // namespace
 
 template <int dim>
 std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t,
@@ -38,8 +24,11 @@ std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t
   if (space.scene.exact())
   {
     exact.reinit(space.n_dofs());
+    const ExactSolution<dim> &u_exact = *space.scene.exact();
     VectorTools::interpolate(space.mapping(), space.dof_handler(),
-                             ExactAt<dim>(*space.scene.exact(), t), exact);
+                             ScalarFunctionFromFunctionObject<dim>(
+                               [&](const Point<dim> &x) { return u_exact.value(x, t); }),
+                             exact);
     out.add_data_vector(exact, "u_exact");
   }
   out.build_patches(space.mapping(), space.degree());

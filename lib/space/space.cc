@@ -13,36 +13,6 @@ namespace anisodwr
 {
 using namespace dealii;
 
-namespace
-{
-template <int dim>
-class DirichletData : public Function<dim>
-{
-public:
-  DirichletData(const Scene<dim> &s, double t) : Function<dim>(1, t), scene(s) {}
-  double value(const Point<dim> &p, unsigned int) const override
-  {
-    return scene.dirichlet_value(p, this->get_time());
-  }
-
-private:
-  const Scene<dim> &scene;
-};
-
-template <int dim>
-class ExactFunction : public Function<dim>
-{
-public:
-  ExactFunction(const ExactSolution<dim> &u, double t) : Function<dim>(1, t), u(u) {}
-  double value(const Point<dim> &p, unsigned int) const override
-  {
-    return u.value(p, this->get_time());
-  }
-
-private:
-  const ExactSolution<dim> &u;
-};
-} // namespace
 
 template <int dim>
 Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria, unsigned int degree,
@@ -72,7 +42,8 @@ void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> 
 {
   c.clear();
   DoFTools::make_hanging_node_constraints(dofs, c);
-  const DirichletData<dim> g(scene, t);
+  const ScalarFunctionFromFunctionObject<dim> g(
+    [&](const Point<dim> &x) { return scene.dirichlet_value(x, t); });
   for (const auto id : scene.dirichlet_ids)
     VectorTools::interpolate_boundary_values(map, dofs, id, g, c);
   c.close();
@@ -212,7 +183,9 @@ void Space<dim>::assemble_initial(Vector<double> &U0) const
 template <int dim>
 double Space<dim>::l2_error(const Vector<double> &uh, double t) const
 {
-  const ExactFunction<dim> u(*scene.exact(), t);
+  const ExactSolution<dim> &exact = *scene.exact();
+  const ScalarFunctionFromFunctionObject<dim> u(
+    [&](const Point<dim> &x) { return exact.value(x, t); });
   Vector<float> cellwise(dofs.get_triangulation().n_active_cells());
   VectorTools::integrate_difference(map, dofs, uh, u, cellwise, QGauss<dim>(fe.degree + 3),
                                     VectorTools::L2_norm);
