@@ -74,7 +74,9 @@ TEST_P(TemporalBasisR, MatricesMatchDefinitions)
     for (unsigned int l = 0; l <= r; ++l)
     {
       if (l != k)
+      {
         EXPECT_NEAR(b.value(k, b.nodes()[l]), 0., 1e-13);
+      }
       double m = 0, d = 0;
       for (unsigned int q = 0; q < sq.size(); ++q)
       {
