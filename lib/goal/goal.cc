@@ -1,6 +1,7 @@
 #include "goal/goal.h"
 
 #include "config/errors.h"
+#include "slab/kronecker.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -150,16 +151,9 @@ void slab_goal_rhs(const GoalVectors &j, const TimeMesh &mesh, const TemporalBas
   const auto nd = j.over_time.size() ? j.over_time.size() : j.at_end.size();
   rhs.reinit(nd * m);
   if (j.over_time.size())
-  {
-    const auto s = basis_integrals(basis);
-    for (types::global_dof_index i = 0; i < nd; ++i)
-      for (unsigned int k = 0; k < m; ++k)
-        rhs(i * m + k) += mesh.tau(n) * s[k] * j.over_time(i);
-  }
+    add_kron_vector(mesh.tau(n), basis_integrals(basis), j.over_time, rhs);
   if (j.at_end.size() && n + 1 == mesh.n_slabs())
-    for (types::global_dof_index i = 0; i < nd; ++i)
-      for (unsigned int k = 0; k < m; ++k)
-        rhs(i * m + k) += basis.right_trace()[k] * j.at_end(i);
+    add_kron_vector(1., basis.right_trace(), j.at_end, rhs);
 }
 
 double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh, const TemporalBasis &basis,

@@ -14,7 +14,7 @@ std::vector<Vector<double>> march_adjoint(const Space<dim> &space, const TimeMes
                                           const TemporalBasis &basis, SlabOperator<dim> &op,
                                           const GoalVectors &goal, const MarchOptions &options)
 {
-  const unsigned int m = basis.n_dofs(), N = mesh.n_slabs();
+  const unsigned int N = mesh.n_slabs();
   std::vector<Vector<double>> Z(N);
   Vector<double> coupling(space.n_dofs()), first, rhs;
   for (unsigned int n = N; n-- > 0;)
@@ -24,9 +24,7 @@ std::vector<Vector<double>> march_adjoint(const Space<dim> &space, const TimeMes
       op.prepare(mesh.start(n), mesh.tau(n));
       slab_goal_rhs(goal, mesh, basis, n, rhs);
       if (n + 1 < N)
-        for (types::global_dof_index i = 0; i < coupling.size(); ++i)
-          for (unsigned int k = 0; k < m; ++k)
-            rhs(i * m + k) += basis.right_trace()[k] * coupling(i);
+        add_kron_vector(1., basis.right_trace(), coupling, rhs);
       op.solve(rhs, Z[n], true);
       // M(t_{n-1})^T z(t_{n-1}^+): the coupling into slab n-1, computed while the
       // operator still holds slab n's jump mass.

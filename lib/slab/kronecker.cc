@@ -127,6 +127,15 @@ void insert_block(const Vector<double> &u, unsigned int k, unsigned int m, Vecto
     U(i * m + k) = u(i);
 }
 
+void add_kron_vector(double factor, const std::vector<double> &a, const Vector<double> &c,
+                     Vector<double> &U)
+{
+  const unsigned int m = a.size();
+  for (types::global_dof_index i = 0; i < c.size(); ++i)
+    for (unsigned int k = 0; k < m; ++k)
+      U(i * m + k) += factor * a[k] * c(i);
+}
+
 void combine_blocks(const Vector<double> &U, const std::vector<double> &c, Vector<double> &u)
 {
   const unsigned int m = c.size();

@@ -22,10 +22,7 @@ void assemble_slab_load(const Space<dim> &space, const TemporalBasis &basis, dou
   for (unsigned int q = 0; q < sq.size(); ++q)
   {
     space.assemble_load(t0 + sq[q] * tau, Fq);
-    const std::vector<double> l = basis.values(sq[q]);
-    for (types::global_dof_index i = 0; i < Fq.size(); ++i)
-      for (unsigned int k = 0; k < m; ++k)
-        F(i * m + k) += tau * wq[q] * l[k] * Fq(i);
+    add_kron_vector(tau * wq[q], basis.values(sq[q]), Fq, F);
   }
 }
 
@@ -45,7 +42,6 @@ std::vector<Vector<double>> march_primal(const Space<dim> &space, const TimeMesh
                                          const TemporalBasis &basis, SlabOperator<dim> &op,
                                          const MarchOptions &options)
 {
-  const unsigned int m = basis.n_dofs();
   std::vector<Vector<double>> U(mesh.n_slabs());
   Vector<double> coupling, last, load;
   space.assemble_initial(coupling); // (u_0, phi + delta b.grad phi)
@@ -61,9 +57,7 @@ std::vector<Vector<double>> march_primal(const Space<dim> &space, const TimeMesh
         op.jump_mass().vmult(coupling, last);
       }
       assemble_slab_load(space, basis, t0, tau, load);
-      for (types::global_dof_index i = 0; i < coupling.size(); ++i)
-        for (unsigned int k = 0; k < m; ++k)
-          load(i * m + k) += basis.left_trace()[k] * coupling(i);
+      add_kron_vector(1., basis.left_trace(), coupling, load);
       op.solve(load, U[n]);
     }
     catch (const NumericalError &)
