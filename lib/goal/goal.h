@@ -5,6 +5,9 @@
 #include "time/temporal_basis.h"
 #include "time/time_mesh.h"
 
+#include <deal.II/fe/mapping.h>
+
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +31,28 @@ struct GoalSpec
   double weight = 1;
 };
 
+/// Cell-local goal vectors j_l = sum_g w_g j_g(phi_l) of one part (over time or at T)
+/// of a set of goals, for any element on the triangulation (the estimator evaluates
+/// J'(w) cell by cell with it).
+template <int dim>
+class LocalGoal
+{
+public:
+  LocalGoal(const dealii::Mapping<dim> &mapping, const dealii::FiniteElement<dim> &fe,
+            const dealii::Triangulation<dim> &tria, const std::vector<GoalSpec> &goals,
+            bool over_time);
+  bool empty() const { return parts.empty(); }
+  /// j on `cell` (zero outside the goals' support). Returns false if j is zero.
+  bool cell_vector(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+                   dealii::Vector<double> &j) const;
+
+private:
+  struct Part;
+  const dealii::Mapping<dim> &mapping;
+  const dealii::FiniteElement<dim> &fe;
+  std::vector<std::shared_ptr<const Part>> parts;
+};
+
 /// j_i = j(phi_i) for the spatial functional of the goal.
 template <int dim>
 void assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal,
@@ -45,6 +70,13 @@ GoalVectors assemble_goal_vectors(const Space<dim> &space, const std::vector<Goa
 /// J(u_h) for slab coefficient vectors U (interleaved).
 double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh, const TemporalBasis &basis,
                      const std::vector<dealii::Vector<double>> &U);
+
+/// J(u) of one goal (weight not applied) for the scene's exact solution u, by adaptive
+/// iterated Gauss quadrature in space (tolerance `tol` relative to the goal's scale)
+/// and composite Gauss in time for goals over I. Throws if the scene has no exact
+/// solution.
+template <int dim>
+double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol = 1e-13);
 
 /// Adjoint right-hand side of slab n: int_{I_n} l_k j_t dt (+ y_k j_T on the last slab).
 void slab_goal_rhs(const GoalVectors &j, const TimeMesh &mesh, const TemporalBasis &basis,

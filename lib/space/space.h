@@ -53,6 +53,9 @@ public:
   /// L2 norm of u(t) - u_h over the domain (u_h a full, constraint-distributed vector).
   double l2_error(const dealii::Vector<double> &uh, double t) const;
 
+  /// SUPG parameter delta_K = delta0 |K|^{1/dim} of a cell.
+  double delta(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
+
   const Scene<dim> &scene;
 
 private:
@@ -62,7 +65,5 @@ private:
   dealii::DoFHandler<dim> dofs;
   dealii::AffineConstraints<double> homogeneous;
   dealii::SparsityPattern pattern;
-
-  double delta(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
 };
 } // namespace anisodwr

@@ -1,0 +1,78 @@
+#pragma once
+// The space-time DWR indicators of SPEC §5, localized cell by cell and slab by slab:
+//
+//   eta_tau   = 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u)
+//   eta_h,i   = 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - u)
+//             + 1/2 S(u)(R_i z) + 1/2 S'(u)(I_2h,i u - u, R_h z)
+//
+// rho(u)(w): the unstabilized primal residual, localized by integration by parts on
+//   each cell (strong cell residual, half of the flux jump eps [d_n u] on interior
+//   faces, the Neumann mismatch and -eps d_n u on Dirichlet faces, the temporal jump
+//   -([u]_{n-1}, w^+)).
+// rho*(u,z)(v) = J'(v) - A(v)(z): the adjoint residual, localized cell by cell in its
+//   weak form (cell integrals; exact, no face terms needed).
+// S, S': the SUPG form (with the time derivative and the jump, as in the discrete
+//   scheme) and its derivative, cell by cell.
+// Temporal integrals use r+2 Gauss points per slab (as the slab load does).
+//
+// This module reads solutions and meshes; it does not solve.
+#include "goal/goal.h"
+#include "space/space.h"
+#include "time/temporal_basis.h"
+#include "time/time_mesh.h"
+
+#include <array>
+#include <vector>
+
+namespace anisodwr
+{
+template <int dim>
+struct Indicators
+{
+  /// per active cell (active_cell_index), summed over slabs
+  std::vector<std::array<double, dim>> eta_h_cell;
+  std::vector<double> eta_tau_cell;
+  /// per slab, summed over cells
+  std::vector<double> eta_tau_slab;
+  std::array<double, dim> eta_h{};
+  double eta_tau = 0;
+  double eta_h_total() const
+  {
+    double s = 0;
+    for (double e : eta_h)
+      s += e;
+    return s;
+  }
+};
+
+/// Primal u (FE_Q(p), `primal`) and adjoint z (FE_Q(q), `adjoint`) on the same mesh;
+/// U, Z interleaved per slab. Weight element W = FE_Q(max(q, 2p)).
+template <int dim>
+Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
+                         const TimeMesh &mesh, const TemporalBasis &basis,
+                         const std::vector<dealii::Vector<double>> &U,
+                         const std::vector<dealii::Vector<double>> &Z,
+                         const std::vector<GoalSpec> &goals);
+
+/// The localized forms summed over all cells, one value per slab, for given global
+/// functions (for the localization tests). u in `primal`'s space; the weights w, y, v
+/// and the adjoint-slot function zt in `other`'s space (same mesh, degree <= W's).
+template <int dim>
+struct LocalizedForms
+{
+  static std::vector<double> primal_residual(const Space<dim> &primal, const Space<dim> &other,
+                                             const TimeMesh &mesh, const TemporalBasis &basis,
+                                             const std::vector<dealii::Vector<double>> &U,
+                                             const std::vector<dealii::Vector<double>> &W);
+  static std::vector<double> supg(const Space<dim> &primal, const Space<dim> &other,
+                                  const TimeMesh &mesh, const TemporalBasis &basis,
+                                  const std::vector<dealii::Vector<double>> &U,
+                                  const std::vector<dealii::Vector<double>> &Y);
+  /// A(v)(zt) (without J') and S'(v, zt) for v in `other`'s space, zt in `other`'s space.
+  static std::vector<double> adjoint_form(const Space<dim> &primal, const Space<dim> &other,
+                                          const TimeMesh &mesh, const TemporalBasis &basis,
+                                          const std::vector<dealii::Vector<double>> &V,
+                                          const std::vector<dealii::Vector<double>> &Zt,
+                                          bool supg_derivative);
+};
+} // namespace anisodwr

@@ -1,0 +1,243 @@
+#include "adaptivity/spatial_operators.h"
+
+#include "adaptivity/temporal_reconstruction.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/mapping.h>
+
+#include <algorithm>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+void LocalMap::apply(const Vector<double> &global, Vector<double> &local, unsigned int stride,
+                     unsigned int offset) const
+{
+  local.reinit(matrix.m());
+  for (unsigned int m = 0; m < matrix.m(); ++m)
+  {
+    double s = 0;
+    for (unsigned int c = 0; c < dofs.size(); ++c)
+      s += matrix(m, c) * global(dofs[c] * stride + offset);
+    local(m) = s;
+  }
+}
+
+template <int dim>
+SpatialOperators<dim>::SpatialOperators(const DoFHandler<dim> &dofs, const Mapping<dim> &mapping,
+                                        unsigned int weight_degree)
+    : dofs(dofs), mapping(mapping), p(dofs.get_fe().degree), fe_w(weight_degree)
+{
+  const QGaussLobatto<1> q(p + 1);
+  for (unsigned int k = 0; k < q.size(); ++k)
+    gl.push_back(q.point(k)[0]);
+  // R_i: (R_i w)(xi_m) = sum_a L_a(xi_m[i]) w(xi_m with xi[i] = a)
+  const auto &pts = fe_w.get_unit_support_points();
+  const unsigned int n = fe_w.n_dofs_per_cell();
+  R.assign(dim + 1, FullMatrix<double>(n, n));
+  for (unsigned int i = 0; i < dim; ++i)
+    for (unsigned int m = 0; m < n; ++m)
+      for (unsigned int a = 0; a < gl.size(); ++a)
+      {
+        Point<dim> x = pts[m];
+        x[i] = gl[a];
+        const double L = lagrange(gl, a, pts[m][i]);
+        for (unsigned int l = 0; l < n; ++l)
+          R[i](m, l) += L * fe_w.shape_value(l, x);
+      }
+  R[dim] = R[0];
+  for (unsigned int i = 1; i < dim; ++i)
+  {
+    FullMatrix<double> t(n, n);
+    R[i].mmult(t, R[dim]);
+    R[dim] = t;
+  }
+}
+
+template <int dim>
+FullMatrix<double> SpatialOperators<dim>::interpolation_from(const FiniteElement<dim> &fe) const
+{
+  const auto &pts = fe_w.get_unit_support_points();
+  FullMatrix<double> I(fe_w.n_dofs_per_cell(), fe.n_dofs_per_cell());
+  for (unsigned int m = 0; m < pts.size(); ++m)
+    for (unsigned int l = 0; l < fe.n_dofs_per_cell(); ++l)
+      I(m, l) = fe.shape_value(l, pts[m]);
+  return I;
+}
+
+template <int dim>
+std::vector<double> SpatialOperators<dim>::extended_nodes(double lo, double hi) const
+{
+  std::vector<double> x = gl;
+  if (hi > 1. + 1e-10)
+    for (unsigned int k = 1; k <= p; ++k)
+      x.push_back(1. + (hi - 1.) * gl[k]);
+  else
+    for (unsigned int k = 0; k < p; ++k)
+      x.push_back(lo * (1. - gl[k]));
+  std::sort(x.begin(), x.end());
+  return x;
+}
+
+template <int dim>
+std::pair<double, double> SpatialOperators<dim>::extent(const cell_iterator &K,
+                                                        const cell_iterator &other,
+                                                        unsigned int direction) const
+{
+  double lo = 1e300, hi = -1e300;
+  for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+  {
+    const double x = mapping.transform_real_to_unit_cell(K, other->vertex(v))[direction];
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  return {lo, hi};
+}
+
+template <int dim>
+typename SpatialOperators<dim>::cell_iterator
+SpatialOperators<dim>::partner(const cell_iterator &K, unsigned int i) const
+{
+  for (unsigned int f = 2 * i; f < 2 * i + 2; ++f)
+    if (!K->at_boundary(f) && K->level() > 0)
+    {
+      const auto N = K->neighbor(f);
+      if (N->is_active() && N->level() == K->level() && N->parent() == K->parent() &&
+          (K->parent()->refinement_case() & RefinementCase<dim>::cut_axis(i)))
+        return cell_iterator(&dofs.get_triangulation(), N->level(), N->index(), &dofs);
+    }
+  for (unsigned int f = 2 * i; f < 2 * i + 2; ++f)
+    if (!K->at_boundary(f) && !K->face(f)->has_children())
+    {
+      const auto N = K->neighbor(f);
+      if (N->is_active())
+        return cell_iterator(&dofs.get_triangulation(), N->level(), N->index(), &dofs);
+    }
+  return cell_iterator();
+}
+
+template <int dim>
+LocalMap SpatialOperators<dim>::directional_lift(const cell_iterator &K, unsigned int i) const
+{
+  const auto P = partner(K, i);
+  if (P.state() != IteratorState::valid)
+    return {};
+  std::vector<std::vector<double>> nodes(dim, gl);
+  const auto [lo, hi] = extent(K, P, i);
+  nodes[i] = extended_nodes(lo, hi);
+  return build(K, nodes, {K, P});
+}
+
+template <int dim>
+LocalMap SpatialOperators<dim>::patch_lift(const cell_iterator &K) const
+{
+  if (K->level() == 0)
+    return {};
+  const auto parent = K->parent();
+  std::vector<cell_iterator> cells{K};
+  for (unsigned int c = 0; c < parent->n_children(); ++c)
+  {
+    if (!parent->child(c)->is_active())
+      return {};
+    if (parent->child(c)->index() != K->index())
+      cells.emplace_back(&dofs.get_triangulation(), parent->child(c)->level(),
+                         parent->child(c)->index(), &dofs);
+  }
+  std::vector<std::vector<double>> nodes(dim, gl);
+  for (unsigned int i = 0; i < dim; ++i)
+    if (parent->refinement_case() & RefinementCase<dim>::cut_axis(i))
+    {
+      double lo = 1e300, hi = -1e300;
+      for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+      {
+        const double x = mapping.transform_real_to_unit_cell(K, parent->vertex(v))[i];
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+      nodes[i] = extended_nodes(lo, hi);
+    }
+  return build(K, nodes, cells);
+}
+
+template <int dim>
+LocalMap SpatialOperators<dim>::build(const cell_iterator &K,
+                                      const std::vector<std::vector<double>> &nodes,
+                                      const std::vector<cell_iterator> &candidates) const
+{
+  const auto &fe = dofs.get_fe();
+  const unsigned int np = fe.n_dofs_per_cell(), nw = fe_w.n_dofs_per_cell();
+  LocalMap map;
+  map.exists = true;
+  map.dofs.resize(candidates.size() * np);
+  std::vector<types::global_dof_index> idx(np);
+  for (unsigned int c = 0; c < candidates.size(); ++c)
+  {
+    candidates[c]->get_dof_indices(idx);
+    std::copy(idx.begin(), idx.end(), map.dofs.begin() + c * np);
+  }
+  map.matrix.reinit(nw, map.dofs.size());
+
+  // tensor grid of nodes; value of u at each grid point as a row over map.dofs
+  std::vector<unsigned int> n(dim), a(dim, 0);
+  unsigned int n_grid = 1;
+  for (unsigned int d = 0; d < dim; ++d)
+    n_grid *= (n[d] = nodes[d].size());
+  const auto &wpts = fe_w.get_unit_support_points();
+  const double tol = 1e-8;
+  auto inside = [&](const Point<dim> &x) {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (x[d] < -tol || x[d] > 1 + tol)
+        return false;
+    return true;
+  };
+  for (unsigned int g = 0; g < n_grid; ++g)
+  {
+    Point<dim> xi;
+    for (unsigned int d = 0, rest = g; d < dim; ++d)
+    {
+      a[d] = rest % n[d];
+      rest /= n[d];
+      xi[d] = nodes[d][a[d]];
+    }
+    // locate the grid point
+    unsigned int c_found = candidates.size();
+    Point<dim> xc;
+    if (inside(xi))
+    {
+      c_found = 0;
+      xc = xi;
+    }
+    else
+    {
+      const Point<dim> x = mapping.transform_unit_to_real_cell(K, xi);
+      for (unsigned int c = 1; c < candidates.size() && c_found == candidates.size(); ++c)
+        try
+        {
+          xc = mapping.transform_real_to_unit_cell(candidates[c], x);
+          if (inside(xc))
+            c_found = c;
+        }
+        catch (const typename Mapping<dim>::ExcTransformationFailed &)
+        {
+        }
+    }
+    if (c_found == candidates.size())
+      return {};
+    for (unsigned int d = 0; d < dim; ++d)
+      xc[d] = std::min(1., std::max(0., xc[d]));
+    for (unsigned int m = 0; m < nw; ++m)
+    {
+      double L = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        L *= lagrange(nodes[d], a[d], wpts[m][d]);
+      if (L != 0.)
+        for (unsigned int l = 0; l < np; ++l)
+          map.matrix(m, c_found * np + l) += L * fe.shape_value(l, xc);
+    }
+  }
+  return map;
+}
+
+template class SpatialOperators<2>;
+} // namespace anisodwr
