@@ -1,6 +1,7 @@
 // anisodwr command-line program: parse, run, report.
 #include "config/errors.h"
 #include "config/parameters.h"
+#include "study/dwr.h"
 #include "study/study.h"
 
 #include <iostream>
@@ -59,9 +60,15 @@ int main(int argc, char **argv)
     if (!output.empty())
       overrides.push_back("output.directory=" + output);
     const Parameters prm = Parameters::read(args[1], overrides);
-    run_study(prm);
+    if (prm.mode == "dwr")
+      run_dwr(prm);
+    else
+      run_study(prm);
     std::cout << "results: " << prm.output_directory << "/ (summary.json";
-    std::cout << (prm.mode == "convergence" ? ", convergence.csv" : ", solution.pvd") << ")\n";
+    std::cout << (prm.mode == "convergence" ? ", convergence.csv"
+                  : prm.mode == "dwr"       ? ", loops.csv, loops.tex, loops.pvd"
+                                            : ", solution.pvd")
+              << ")\n";
     return exit_ok;
   }
   catch (const InputError &e)

@@ -45,8 +45,8 @@ std::vector<Entry> make_entries()
   auto boolean = std::make_shared<P::Bool>();
   auto text = std::make_shared<P::Anything>();
   return {
-    {"scene", "name", "moving_hump", Kind::text, choice("moving_hump|manufactured|heat"),
-     "Benchmark scene (see SCENES.md): moving_hump, manufactured or heat."},
+    {"scene", "name", "moving_hump", Kind::text, choice("moving_hump|manufactured|heat|boundary_layer"),
+     "Benchmark scene (see SCENES.md): moving_hump, manufactured, heat or boundary_layer."},
     {"scene", "variant", "", Kind::text, text,
      "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
      "alpha), poly_space (rotating coefficients, spatial part in Q2). heat: poly "
@@ -68,18 +68,54 @@ std::vector<Entry> make_entries()
     {"solver", "reuse_factorization", "true", Kind::boolean, boolean,
      "Reuse the LU factorization while the slab matrix is unchanged (same tau, "
      "coefficients constant in time)."},
-    {"study", "mode", "single", Kind::text, choice("single|convergence"),
-     "single: one primal run; convergence: uniform refinement over study.levels levels."},
+    {"study", "mode", "single", Kind::text, choice("single|convergence|dwr"),
+     "single: one primal run; convergence: uniform refinement over study.levels levels; "
+     "dwr: the adaptive DWR loop (section adaptivity, goals from section goal)."},
     {"study", "refine", "both", Kind::text, choice("space|time|both"),
      "Convergence study: refine h (space), tau (time) or both per level."},
     {"study", "levels", "4", Kind::integer, integer(1, 20),
      "Number of levels of a convergence study."},
+    {"goal", "kind", "scene", Kind::text, choice("scene|point|mean"),
+     "scene: the scene's goals (moving_hump: mollified u(x_e1,T), u(x_e2,T); "
+     "boundary_layer: mean of u(T) over (0.5,1)x(0.25,0.75); others: u(0.5,0.5,T)); "
+     "point: mollified point values at goal.locations; mean: means over the rectangles "
+     "in goal.locations."},
+    {"goal", "locations", "", Kind::text, text,
+     "point: 'x,y; x,y; ...'; mean: 'x0,y0,x1,y1; ...' (lower-left, upper-right)."},
+    {"goal", "over_time", "false", Kind::boolean, boolean,
+     "Custom goals: integrate over I (true) or evaluate at T (false)."},
+    {"goal", "radius", "0.01", Kind::real, real(0.),
+     "Mollifier radius s of point goals; 0 = exact point evaluation (Dirac)."},
+    {"goal", "weights", "1", Kind::text, text,
+     "Weights w_i of J_w = sum w_i J_i: one number for all goals, a comma list (one per "
+     "goal), or auto (w_i = sign(J_i(I_2h u) - J_i(u_h)) / max(|J_i(u_h)|, 1e-12))."},
+    {"adaptivity", "mode", "anisotropic", Kind::text, choice("anisotropic|isotropic|uniform"),
+     "anisotropic: mark per direction by |eta_h,i|; isotropic: mark by |eta_h|, refine "
+     "isotropically; uniform: refine every cell."},
+    {"adaptivity", "loops", "6", Kind::integer, integer(1, 1000), "Maximum number of DWR loops."},
+    {"adaptivity", "theta_h", "0.25", Kind::real, real(0.),
+     "Fraction of cells marked per direction (by count, largest indicators), in [0,1]."},
+    {"adaptivity", "theta_tau", "0.2", Kind::real, real(0.),
+     "Fraction of slabs bisected (largest |eta_tau^n|), in [0,1]; 0 keeps the time mesh."},
+    {"adaptivity", "theta_coarsen", "0", Kind::real, real(0.),
+     "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1]."},
+    {"adaptivity", "tolerance", "0", Kind::real, real(0.),
+     "Stop when |eta_tau_h| < tolerance (0: no tolerance)."},
+    {"adaptivity", "max_dofs", "0", Kind::real, real(0.),
+     "Stop before a loop whose N_tot would exceed this (0: no budget)."},
+    {"adaptivity", "max_memory_mb", "0", Kind::real, real(0.),
+     "Stop when the peak memory exceeds this many MB (0: no budget)."},
+    {"adaptivity", "adjoint_degree", "0", Kind::integer, integer(0, 8),
+     "Polynomial degree q of the adjoint; 0 means q = 2p."},
     {"output", "directory", "results/moving_hump", Kind::text, text,
      "Output directory (created if missing); --output overrides it."},
     {"output", "vtu_every", "1", Kind::integer, integer(0, 1000000),
      "Write VTU of u(t_n^-) every k-th slab (and at T); 0 writes none."},
     {"output", "progress", "true", Kind::boolean, boolean,
      "Print one progress line per slab to stdout."},
+    {"output", "vtu_loops", "1", Kind::integer, integer(0, 1000000),
+     "DWR: write VTU (mesh, u(T), indicators, aspect ratio) every k-th loop and at the "
+     "last loop; 0 writes none."},
   };
 }
 
@@ -220,6 +256,21 @@ public:
     p.mode = get("study.mode");
     p.refine = get("study.refine");
     p.levels = integer("study.levels");
+    p.goal_kind = get("goal.kind");
+    p.goal_locations = get("goal.locations");
+    p.goal_over_time = boolean("goal.over_time");
+    p.goal_radius = real("goal.radius");
+    p.goal_weights = get("goal.weights");
+    p.adaptivity_mode = get("adaptivity.mode");
+    p.loops = integer("adaptivity.loops");
+    p.theta_h = fraction("adaptivity.theta_h");
+    p.theta_tau = fraction("adaptivity.theta_tau");
+    p.theta_coarsen = fraction("adaptivity.theta_coarsen");
+    p.tolerance = real("adaptivity.tolerance");
+    p.max_dofs = real("adaptivity.max_dofs");
+    p.max_memory_mb = real("adaptivity.max_memory_mb");
+    p.adjoint_degree = integer("adaptivity.adjoint_degree");
+    p.vtu_loops = integer("output.vtu_loops");
     p.output_directory = get("output.directory");
     p.vtu_every = integer("output.vtu_every");
     p.progress = boolean("output.progress");
@@ -237,6 +288,14 @@ private:
   bool boolean(const std::string &k) const
   {
     return get(k) == "true" || get(k) == "True" || get(k) == "yes";
+  }
+  double fraction(const std::string &k) const
+  {
+    const double v = real(k);
+    if (v > 1.)
+      throw InputError("invalid value '" + get(k) + "' for key '" + k +
+                       "'; expected a fraction in [0, 1]");
+    return v;
   }
   void positive(const std::string &k, double v) const
   {
@@ -332,6 +391,21 @@ std::string Parameters::to_json(unsigned int indent) const
     {"study.mode", mode},
     {"study.refine", refine},
     {"study.levels", std::to_string(levels)},
+    {"goal.kind", goal_kind},
+    {"goal.locations", goal_locations},
+    {"goal.over_time", goal_over_time ? "true" : "false"},
+    {"goal.radius", num(goal_radius)},
+    {"goal.weights", goal_weights},
+    {"adaptivity.mode", adaptivity_mode},
+    {"adaptivity.loops", std::to_string(loops)},
+    {"adaptivity.theta_h", num(theta_h)},
+    {"adaptivity.theta_tau", num(theta_tau)},
+    {"adaptivity.theta_coarsen", num(theta_coarsen)},
+    {"adaptivity.tolerance", num(tolerance)},
+    {"adaptivity.max_dofs", num(max_dofs)},
+    {"adaptivity.max_memory_mb", num(max_memory_mb)},
+    {"adaptivity.adjoint_degree", std::to_string(adjoint_degree)},
+    {"output.vtu_loops", std::to_string(vtu_loops)},
     {"output.directory", output_directory},
     {"output.vtu_every", std::to_string(vtu_every)},
     {"output.progress", progress ? "true" : "false"}};

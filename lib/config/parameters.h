@@ -34,10 +34,29 @@ struct Parameters
   std::string refine = "both";
   unsigned int levels = 4;
 
+  // [goal]
+  std::string goal_kind = "scene";
+  std::string goal_locations = "";
+  bool goal_over_time = false;
+  double goal_radius = 0.01;
+  std::string goal_weights = "1";
+
+  // [adaptivity]
+  std::string adaptivity_mode = "anisotropic";
+  unsigned int loops = 6;
+  double theta_h = 0.25;
+  double theta_tau = 0.2;
+  double theta_coarsen = 0.;
+  double tolerance = 0.;
+  double max_dofs = 0.;
+  double max_memory_mb = 0.;
+  unsigned int adjoint_degree = 0;
+
   // [output]
   std::string output_directory = "results/moving_hump";
   unsigned int vtu_every = 1;
   bool progress = true;
+  unsigned int vtu_loops = 1;
 
   /// Reads `file`, then applies the overrides "section.key=value" in order.
   /// Throws InputError naming the file, key and value on any problem.

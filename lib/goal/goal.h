@@ -1,6 +1,7 @@
 #pragma once
 // Linear goal functionals J(u) = int_I j_t(u(t)) dt + j_T(u(T)) (SPEC §3) and the
 // mollifier delta_{s,c}(x) = C exp(1 - 1/(1 - |x-c|^2/s^2)) with int delta = 1.
+#include "goal/goal_spec.h"
 #include "space/space.h"
 #include "time/temporal_basis.h"
 #include "time/time_mesh.h"
@@ -20,16 +21,7 @@ double mollifier_constant(unsigned int dim, double s);
 template <int dim>
 double mollifier(const dealii::Point<dim> &x, const dealii::Point<dim> &c, double s, double C);
 
-struct GoalSpec
-{
-  std::string name;
-  std::string kind = "point"; ///< point (mollified, s = 0: Dirac) or mean (over a rectangle)
-  bool over_time = false;     ///< true: int_I j(u(t)) dt; false: j(u(T))
-  std::vector<double> center; ///< point goals
-  double radius = 0;          ///< mollifier radius s
-  std::vector<double> lower, upper; ///< mean goals: the rectangle
-  double weight = 1;
-};
+
 
 /// Cell-local goal vectors j_l = sum_g w_g j_g(phi_l) of one part (over time or at T)
 /// of a set of goals, for any element on the triangulation (the estimator evaluates

@@ -15,7 +15,8 @@ using namespace dealii;
 
 template <int dim>
 std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t,
-                      const std::string &dir, const std::string &name, unsigned int index)
+                      const std::string &dir, const std::string &name, unsigned int index,
+                      const CellData &cell_data)
 {
   DataOut<dim> out;
   out.attach_dof_handler(space.dof_handler());
@@ -31,6 +32,8 @@ std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t
                              exact);
     out.add_data_vector(exact, "u_exact");
   }
+  for (const auto &[field, values] : cell_data)
+    out.add_data_vector(values, field, DataOut<dim>::type_cell_data);
   out.build_patches(space.mapping(), space.degree());
   DataOutBase::VtkFlags flags(t, index);
   out.set_flags(flags);
@@ -49,5 +52,6 @@ void write_pvd(const std::string &dir, const std::string &name,
 }
 
 template std::string write_vtu<2>(const Space<2> &, const Vector<double> &, double,
-                                  const std::string &, const std::string &, unsigned int);
+                                  const std::string &, const std::string &, unsigned int,
+                                  const CellData &);
 } // namespace anisodwr

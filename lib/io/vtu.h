@@ -8,11 +8,15 @@
 
 namespace anisodwr
 {
-/// Writes dir/<name>-<index>.vtu with the field "u" and "u_exact" when known;
-/// returns the file name relative to dir.
+/// Named per-cell values (indicators, aspect ratio), one entry per active cell.
+using CellData = std::vector<std::pair<std::string, dealii::Vector<double>>>;
+
+/// Writes dir/<name>-<index>.vtu with the field "u", "u_exact" when known and the
+/// given cell data; returns the file name relative to dir.
 template <int dim>
 std::string write_vtu(const Space<dim> &space, const dealii::Vector<double> &u, double t,
-                      const std::string &dir, const std::string &name, unsigned int index);
+                      const std::string &dir, const std::string &name, unsigned int index,
+                      const CellData &cell_data = {});
 
 /// Writes dir/<name>.pvd listing (time, file) pairs (ParaView opens it).
 void write_pvd(const std::string &dir, const std::string &name,

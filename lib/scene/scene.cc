@@ -46,6 +46,16 @@ double Scene<dim>::neumann_value(const dealii::Point<dim> &x, const dealii::Tens
 }
 
 template <int dim>
+std::vector<GoalSpec> Scene<dim>::default_goals(double radius) const
+{
+  GoalSpec g;
+  g.name = "u_center_T";
+  g.center.assign(dim, 0.5);
+  g.radius = radius;
+  return {g};
+}
+
+template <int dim>
 std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm)
 {
   std::unique_ptr<Scene<dim>> scene;
@@ -55,9 +65,11 @@ std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm)
     scene = std::make_unique<Manufactured>(prm.epsilon, prm.variant);
   else if (prm.scene == "heat")
     scene = std::make_unique<Heat>(prm.epsilon, prm.variant);
+  else if (prm.scene == "boundary_layer")
+    scene = std::make_unique<BoundaryLayer>(prm.epsilon, prm.variant);
   else
     throw InputError("invalid value '" + prm.scene +
-                     "' for key 'scene.name'; expected moving_hump, manufactured or heat");
+                     "' for key 'scene.name'; expected moving_hump, manufactured, heat or boundary_layer");
   scene->end_time = prm.end_time;
   return scene;
 }

@@ -5,6 +5,8 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
+#include "goal/goal_spec.h"
+
 #include <memory>
 #include <set>
 #include <string>
@@ -53,6 +55,10 @@ public:
   /// eps grad u . n on the Neumann boundary.
   virtual double neumann_value(const dealii::Point<dim> &x, const dealii::Tensor<1, dim> &n,
                                double t) const;
+
+  /// The scene's goal functionals (SCENES.md); `radius` is the mollifier radius of
+  /// point goals. Default: the value at the domain's centre (0.5, 0.5) at T.
+  virtual std::vector<GoalSpec> default_goals(double radius) const;
 
   /// nullptr if the scene has no exact solution.
   const ExactSolution<dim> *exact() const { return exact_solution.get(); }

@@ -87,6 +87,37 @@ private:
   }
 };
 
+/// x (1 - e^{(x-1)/eps}) sin(pi y) (1 + t)
+class LayerSolution : public ExactSolution<2>
+{
+public:
+  explicit LayerSolution(double eps) : eps(eps) {}
+  double value(const dealii::Point<2> &p, double t) const override
+  {
+    return X(p[0]) * std::sin(pi * p[1]) * (1. + t);
+  }
+  double time_derivative(const dealii::Point<2> &p, double) const override
+  {
+    return X(p[0]) * std::sin(pi * p[1]);
+  }
+  dealii::Tensor<1, 2> gradient(const dealii::Point<2> &p, double t) const override
+  {
+    const double x = p[0], E = std::exp((x - 1.) / eps);
+    return dealii::Tensor<1, 2>({(1. - E - x * E / eps) * std::sin(pi * p[1]) * (1. + t),
+                                 X(x) * pi * std::cos(pi * p[1]) * (1. + t)});
+  }
+  double laplacian(const dealii::Point<2> &p, double t) const override
+  {
+    const double x = p[0], E = std::exp((x - 1.) / eps);
+    const double Xxx = -2. * E / eps - x * E / (eps * eps);
+    return (Xxx - pi * pi * X(x)) * std::sin(pi * p[1]) * (1. + t);
+  }
+
+private:
+  double eps;
+  double X(double x) const { return x * (1. - std::exp((x - 1.) / eps)); }
+};
+
 double sin_pi(double x) { return std::sin(pi * x); }
 double dsin_pi(double x) { return pi * std::cos(pi * x); }
 double ddsin_pi(double x) { return -pi * pi * std::sin(pi * x); }
@@ -137,6 +168,38 @@ void MovingHump::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const { uni
 dealii::Tensor<1, 2> MovingHump::convection(const dealii::Point<2> &, double) const
 {
   return dealii::Tensor<1, 2>({2., 3.});
+}
+
+std::vector<GoalSpec> MovingHump::default_goals(double radius) const
+{
+  const double d = 0.25 / std::sqrt(2.);
+  GoalSpec g1, g2;
+  g1.name = "u_xe1_T";
+  g1.center = {0.5 - d, 0.5 - d};
+  g2.name = "u_xe2_T";
+  g2.center = {0.5 + d, 0.5 + d};
+  g1.radius = g2.radius = radius;
+  return {g1, g2};
+}
+
+BoundaryLayer::BoundaryLayer(double eps, const std::string &variant)
+{
+  require_variant("boundary_layer", variant, {""});
+  epsilon = eps;
+  exact_solution = std::make_unique<LayerSolution>(eps);
+}
+void BoundaryLayer::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const
+{
+  unit_square(tria);
+}
+std::vector<GoalSpec> BoundaryLayer::default_goals(double) const
+{
+  GoalSpec g;
+  g.name = "mean_T";
+  g.kind = "mean";
+  g.lower = {0.5, 0.25};
+  g.upper = {1., 0.75};
+  return {g};
 }
 
 Manufactured::Manufactured(double eps, const std::string &variant)

@@ -14,6 +14,26 @@ public:
   dealii::Tensor<1, 2> convection(const dealii::Point<2> &, double) const override;
   double reaction(const dealii::Point<2> &, double) const override { return 1.; }
   bool coefficients_depend_on_time() const override { return false; }
+  /// J_1 = u(x_e1, T), J_2 = u(x_e2, T), mollified, x_e1,2 = (1/2 -+ r0/sqrt2, ...).
+  std::vector<GoalSpec> default_goals(double radius) const override;
+};
+
+/// Exponential outflow layer at x = 1 (aligned with the y axis), for anisotropy:
+///   u = x (1 - e^{(x-1)/eps}) sin(pi y) (1 + t),  b = (1, 0), alpha = 1,
+/// homogeneous Dirichlet data. Goal: mean of u(T) over (0.5,1) x (0.25,0.75).
+class BoundaryLayer : public Scene<2>
+{
+public:
+  BoundaryLayer(double epsilon, const std::string &variant);
+  std::string name() const override { return "boundary_layer"; }
+  void make_coarse_grid(dealii::Triangulation<2, 2> &tria) const override;
+  dealii::Tensor<1, 2> convection(const dealii::Point<2> &, double) const override
+  {
+    return dealii::Tensor<1, 2>({1., 0.});
+  }
+  double reaction(const dealii::Point<2> &, double) const override { return 1.; }
+  bool coefficients_depend_on_time() const override { return false; }
+  std::vector<GoalSpec> default_goals(double radius) const override;
 };
 
 /// Smooth solutions on (0,1)^2 for convergence studies.

@@ -1,0 +1,139 @@
+#include "adaptivity/refinement.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_nothing.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+namespace
+{
+/// Indices of the ceil(theta n) largest values.
+std::vector<unsigned int> largest(const std::vector<double> &v, double theta)
+{
+  std::vector<unsigned int> order(v.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const unsigned int k = std::min<std::size_t>(v.size(), std::ceil(theta * v.size() - 1e-12));
+  std::partial_sort(order.begin(), order.begin() + k, order.end(),
+                    [&](unsigned int a, unsigned int b) { return v[a] > v[b]; });
+  order.resize(k);
+  return order;
+}
+} // namespace
+
+template <int dim>
+unsigned int mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
+                        const MarkingOptions &options)
+{
+  const unsigned int n = tria.n_active_cells();
+  std::vector<RefinementCase<dim>> cut(n, RefinementCase<dim>::no_refinement);
+  if (options.mode == "uniform")
+    std::fill(cut.begin(), cut.end(), RefinementCase<dim>::isotropic_refinement);
+  else if (options.mode == "isotropic")
+  {
+    std::vector<double> eta(n);
+    for (unsigned int c = 0; c < n; ++c)
+      eta[c] = std::abs(std::accumulate(ind.eta_h_cell[c].begin(), ind.eta_h_cell[c].end(), 0.));
+    for (unsigned int c : largest(eta, options.theta_h))
+      cut[c] = RefinementCase<dim>::isotropic_refinement;
+  }
+  else
+    for (unsigned int i = 0; i < dim; ++i)
+    {
+      std::vector<double> eta(n);
+      for (unsigned int c = 0; c < n; ++c)
+        eta[c] = std::abs(ind.eta_h_cell[c][i]);
+      for (unsigned int c : largest(eta, options.theta_h))
+        cut[c] = cut[c] | RefinementCase<dim>::cut_axis(i);
+    }
+  std::vector<bool> coarsen(n, false);
+  if (options.theta_coarsen > 0 && options.mode != "uniform")
+  {
+    std::vector<double> eta(n);
+    for (unsigned int c = 0; c < n; ++c)
+      eta[c] = -std::abs(std::accumulate(ind.eta_h_cell[c].begin(), ind.eta_h_cell[c].end(), 0.));
+    for (unsigned int c : largest(eta, options.theta_coarsen))
+      coarsen[c] = cut[c] == RefinementCase<dim>::no_refinement;
+  }
+  unsigned int flagged = 0;
+  for (const auto &cell : tria.active_cell_iterators())
+  {
+    const auto c = cell->active_cell_index();
+    if (cut[c] != RefinementCase<dim>::no_refinement)
+    {
+      cell->set_refine_flag(cut[c]);
+      ++flagged;
+    }
+    else if (coarsen[c])
+      cell->set_coarsen_flag();
+  }
+  tria.prepare_coarsening_and_refinement();
+  return flagged;
+}
+
+TimeMesh refine_time(const TimeMesh &mesh, const std::vector<double> &eta_tau_slab,
+                     double theta_tau)
+{
+  std::vector<double> eta(eta_tau_slab.size());
+  for (unsigned int n = 0; n < eta.size(); ++n)
+    eta[n] = std::abs(eta_tau_slab[n]);
+  std::vector<bool> split(eta.size(), false);
+  if (theta_tau > 0)
+    for (unsigned int n : largest(eta, theta_tau))
+      split[n] = true;
+  TimeMesh out;
+  out.t.push_back(mesh.t[0]);
+  for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+  {
+    if (split[n])
+      out.t.push_back(0.5 * (mesh.t[n] + mesh.t[n + 1]));
+    out.t.push_back(mesh.t[n + 1]);
+  }
+  return out;
+}
+
+template <int dim>
+double max_aspect_ratio(const Triangulation<dim> &tria, const Mapping<dim> &mapping,
+                        std::vector<double> *per_cell)
+{
+  const FE_Nothing<dim> fe;
+  const QGauss<dim> quad(2);
+  FEValues<dim> fv(mapping, fe, quad, update_jacobians);
+  double ar = 1;
+  if (per_cell)
+    per_cell->assign(tria.n_active_cells(), 1.);
+  for (const auto &cell : tria.active_cell_iterators())
+  {
+    fv.reinit(cell);
+    double cell_ar = 1;
+    for (unsigned int q = 0; q < quad.size(); ++q)
+    {
+      // singular values of J: square roots of the eigenvalues of J^T J
+      const Tensor<2, dim> J = Tensor<2, dim>(fv.jacobian(q));
+      const auto ev = eigenvalues(symmetrize(transpose(J) * J));
+      double lo = 1e300, hi = 0;
+      for (double e : ev)
+      {
+        lo = std::min(lo, e);
+        hi = std::max(hi, e);
+      }
+      cell_ar = std::max(cell_ar, std::sqrt(hi / lo));
+    }
+    if (per_cell)
+      (*per_cell)[cell->active_cell_index()] = cell_ar;
+    ar = std::max(ar, cell_ar);
+  }
+  return ar;
+}
+
+template unsigned int mark_cells<2>(Triangulation<2> &, const Indicators<2> &,
+                                    const MarkingOptions &);
+template double max_aspect_ratio<2>(const Triangulation<2> &, const Mapping<2> &,
+                                    std::vector<double> *);
+} // namespace anisodwr

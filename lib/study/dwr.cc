@@ -1,0 +1,435 @@
+#include "study/dwr.h"
+
+#include "adaptivity/estimator.h"
+#include "adaptivity/refinement.h"
+#include "adaptivity/spatial_operators.h"
+#include "config/errors.h"
+#include "goal/goal.h"
+#include "io/table.h"
+#include "io/vtu.h"
+#include "slab/adjoint_march.h"
+#include "slab/primal_march.h"
+
+#include <deal.II/base/timer.h>
+#include <deal.II/grid/tria.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+namespace
+{
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+std::vector<std::string> split(const std::string &s, char sep)
+{
+  std::vector<std::string> out;
+  std::string item;
+  std::istringstream in(s);
+  while (std::getline(in, item, sep))
+  {
+    const auto a = item.find_first_not_of(" \t"), b = item.find_last_not_of(" \t");
+    out.push_back(a == std::string::npos ? "" : item.substr(a, b - a + 1));
+  }
+  return out;
+}
+
+std::vector<double> numbers(const std::string &s, const std::string &key, unsigned int n)
+{
+  std::vector<double> v;
+  for (const auto &x : split(s, ','))
+    try
+    {
+      std::size_t used = 0;
+      v.push_back(std::stod(x, &used));
+      if (used != x.size())
+        throw std::invalid_argument(x);
+    }
+    catch (const std::exception &)
+    {
+      throw InputError("invalid value '" + s + "' in key '" + key + "'; expected " +
+                       std::to_string(n) + " comma-separated numbers");
+    }
+  if (v.size() != n)
+    throw InputError("invalid value '" + s + "' in key '" + key + "'; expected " +
+                     std::to_string(n) + " comma-separated numbers, got " +
+                     std::to_string(v.size()));
+  return v;
+}
+
+std::string num(double v)
+{
+  if (!std::isfinite(v))
+    return "null";
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+struct LoopRow
+{
+  unsigned int loop = 0, n_t = 0;
+  double n_space = 0, n_tot = 0;
+  double J = 0, J_exact = nan, eta_h_total = 0, eta_tau = 0, ar = 1;
+  std::array<double, 2> eta_h{};
+  std::vector<double> J_goal, J_goal_exact;
+  std::vector<double> weights;
+  double t_primal = 0, t_adjoint = 0, t_estimate = 0, t_refine = 0, mem = 0;
+  double J_error() const { return std::abs(J_exact - J); }
+  double I_eff() const { return std::abs((eta_h_total + eta_tau) / (J_exact - J)); }
+  std::vector<double> values() const
+  {
+    return {double(loop), n_space, double(n_t), n_tot, J, J_error(), eta_h[0], eta_h[1],
+            eta_h_total, eta_tau, eta_h_total + eta_tau, I_eff(), ar, t_primal, t_adjoint,
+            t_estimate, t_refine, mem};
+  }
+};
+
+const std::vector<std::string> columns{
+  "loop",     "N_space", "N_t",      "N_tot",    "J",        "J_error",
+  "eta_hx",   "eta_hy",  "eta_h",    "eta_tau",  "eta_tauh", "I_eff",
+  "ar_max",   "t_primal", "t_adjoint", "t_estimate", "t_refine", "mem_peak"};
+
+void write_latex(const std::string &path, const std::vector<LoopRow> &rows)
+{
+  std::ofstream f(path);
+  f << "% written by anisodwr; one row per DWR loop\n"
+    << "\\begin{tabular}{rrrrcccccccr}\n\\hline\n"
+    << "$\\ell$ & $N_{\\mathrm{space}}$ & $N_t$ & $N_{\\mathrm{tot}}$ & "
+    << "$|J(u)-J(u_{\\tau h})|$ & $\\eta_{h,x}$ & $\\eta_{h,y}$ & $\\eta_h$ & $\\eta_\\tau$ & "
+    << "$\\eta_{\\tau h}$ & $I_{\\mathrm{eff}}$ & $\\mathrm{ar}_{\\max}$ \\\\\n\\hline\n";
+  auto sci = [](double v) {
+    if (!std::isfinite(v))
+      return std::string("--");
+    std::ostringstream s;
+    s << std::scientific << std::setprecision(2) << v;
+    return "$" + s.str() + "$";
+  };
+  for (const auto &r : rows)
+  {
+    std::ostringstream ie, ar;
+    ie << std::fixed << std::setprecision(2) << r.I_eff();
+    ar << std::fixed << std::setprecision(1) << r.ar;
+    f << r.loop << " & " << std::size_t(r.n_space) << " & " << r.n_t << " & "
+      << std::size_t(r.n_tot) << " & " << sci(r.J_error()) << " & " << sci(r.eta_h[0])
+      << " & " << sci(r.eta_h[1]) << " & " << sci(r.eta_h_total) << " & " << sci(r.eta_tau)
+      << " & " << sci(r.eta_h_total + r.eta_tau) << " & "
+      << (std::isfinite(r.I_eff()) ? ie.str() : "--") << " & " << ar.str() << " \\\\\n";
+  }
+  f << "\\hline\n\\end{tabular}\n";
+}
+
+void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
+                   const std::vector<LoopRow> &rows, const std::string &status,
+                   const std::string &stop_reason, double wall)
+{
+  std::ofstream f(prm.output_directory + "/summary.json");
+  f << "{\n  \"status\": \"" << status << "\",\n  \"stop_reason\": \"" << stop_reason
+    << "\",\n  \"config\": " << prm.to_json(2) << ",\n  \"goals\": [";
+  for (std::size_t g = 0; g < goals.size(); ++g)
+    f << (g ? ", " : "") << "\"" << goals[g].name << "\"";
+  f << "],\n  \"loops\": [";
+  for (std::size_t i = 0; i < rows.size(); ++i)
+  {
+    const auto &r = rows[i];
+    f << (i ? ",\n    " : "\n    ") << "{";
+    const auto v = r.values();
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      f << (c ? ", " : "") << "\"" << columns[c] << "\": " << num(v[c]);
+    f << ", \"goals\": {";
+    for (std::size_t g = 0; g < goals.size(); ++g)
+      f << (g ? ", " : "") << "\"" << goals[g].name << "\": {\"J_h\": " << num(r.J_goal[g])
+        << ", \"J_exact\": " << num(r.J_goal_exact[g]) << ", \"weight\": " << num(r.weights[g])
+        << "}";
+    f << "}}";
+  }
+  f << "\n  ],\n  \"wall_time\": " << num(wall) << ",\n  \"peak_memory_mb\": "
+    << num(peak_memory_mb()) << "\n}\n";
+}
+
+/// J_i(u~) with u~ the patch lift I_2h u_h (the reconstruction behind `auto` weights).
+double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh &mesh,
+                   const TemporalBasis &basis, const std::vector<Vector<double>> &U)
+{
+  const SpatialOperators<2> ops(primal.dof_handler(), primal.mapping(), 2 * primal.degree());
+  GoalSpec g = goal;
+  g.weight = 1;
+  const LocalGoal<2> local(primal.mapping(), ops.weight_element(),
+                           primal.dof_handler().get_triangulation(), {g}, g.over_time);
+  const FullMatrix<double> P = ops.interpolation_from(primal.finite_element());
+  const unsigned int m1 = basis.n_dofs(), N = mesh.n_slabs();
+  std::vector<double> gp, gw;
+  gauss_rule(m1 + 1, gp, gw);
+  std::vector<types::global_dof_index> idx(primal.finite_element().n_dofs_per_cell());
+  double J = 0;
+  Vector<double> j, v;
+  for (const auto &cell : primal.dof_handler().active_cell_iterators())
+  {
+    if (!local.cell_vector(cell, j))
+      continue;
+    LocalMap lift = ops.patch_lift(cell);
+    if (!lift.exists) // no patch: the lift is u itself
+    {
+      cell->get_dof_indices(idx);
+      lift.exists = true;
+      lift.dofs = idx;
+      lift.matrix = P;
+    }
+    auto node_value = [&](unsigned int n, unsigned int k) {
+      lift.apply(U[n], v, m1, k);
+      return j * v;
+    };
+    if (!g.over_time)
+      J += node_value(N - 1, m1 - 1);
+    else
+      for (unsigned int n = 0; n < N; ++n)
+        for (unsigned int k = 0; k < m1; ++k)
+        {
+          double w = 0;
+          for (unsigned int m = 0; m < gp.size(); ++m)
+            w += gw[m] * basis.value(k, gp[m]);
+          J += mesh.tau(n) * w * node_value(n, k);
+        }
+  }
+  return J;
+}
+
+double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &mesh,
+                  const TemporalBasis &basis, const std::vector<Vector<double>> &U)
+{
+  GoalSpec g = goal;
+  g.weight = 1;
+  return evaluate_goal(assemble_goal_vectors(space, {g}), mesh, basis, U);
+}
+} // namespace
+
+std::vector<GoalSpec> make_goals(const Parameters &prm, const Scene<2> &scene)
+{
+  std::vector<GoalSpec> goals;
+  if (prm.goal_kind == "scene")
+    goals = scene.default_goals(prm.goal_radius);
+  else
+  {
+    const auto items = split(prm.goal_locations, ';');
+    if (prm.goal_locations.empty() || items.empty())
+      throw InputError("key 'goal.locations' is empty; goal.kind = " + prm.goal_kind +
+                       " needs at least one location");
+    for (std::size_t i = 0; i < items.size(); ++i)
+    {
+      GoalSpec g;
+      g.kind = prm.goal_kind;
+      g.over_time = prm.goal_over_time;
+      g.name = prm.goal_kind + "_" + std::to_string(i + 1);
+      if (g.kind == "point")
+      {
+        g.center = numbers(items[i], "goal.locations", 2);
+        g.radius = prm.goal_radius;
+      }
+      else
+      {
+        const auto v = numbers(items[i], "goal.locations", 4);
+        g.lower = {v[0], v[1]};
+        g.upper = {v[2], v[3]};
+        if (!(v[2] > v[0] && v[3] > v[1]))
+          throw InputError("invalid rectangle '" + items[i] +
+                           "' in key 'goal.locations'; expected x0,y0,x1,y1 with x1 > x0, "
+                           "y1 > y0");
+      }
+      goals.push_back(g);
+    }
+  }
+  if (prm.goal_weights != "auto")
+  {
+    const auto w = split(prm.goal_weights, ',');
+    if (w.size() != 1 && w.size() != goals.size())
+      throw InputError("invalid value '" + prm.goal_weights + "' for key 'goal.weights'; "
+                       "expected auto, one number or " + std::to_string(goals.size()) +
+                       " comma-separated numbers (one per goal)");
+    const auto v = numbers(prm.goal_weights, "goal.weights", w.size());
+    for (std::size_t g = 0; g < goals.size(); ++g)
+      goals[g].weight = v[w.size() == 1 ? 0 : g];
+  }
+  return goals;
+}
+
+void run_dwr(const Parameters &prm)
+{
+  make_directory(prm.output_directory);
+  const auto scene = create_scene<2>(prm);
+  auto goals = make_goals(prm, *scene);
+  const bool auto_weights = prm.goal_weights == "auto";
+  const bool has_exact = scene->exact() != nullptr;
+  std::vector<double> J_exact(goals.size(), nan);
+  if (has_exact)
+    for (std::size_t g = 0; g < goals.size(); ++g)
+      J_exact[g] = exact_goal(*scene, goals[g]);
+
+  Triangulation<2> tria(Triangulation<2>::maximum_smoothing);
+  scene->make_coarse_grid(tria);
+  tria.refine_global(prm.initial_refinements);
+  TimeMesh mesh = TimeMesh::uniform(scene->end_time, prm.n_slabs);
+  const TemporalBasis basis(prm.r);
+  const unsigned int q = prm.adjoint_degree ? prm.adjoint_degree : 2 * prm.p;
+  MarkingOptions marking;
+  marking.mode = prm.adaptivity_mode;
+  marking.theta_h = prm.theta_h;
+  marking.theta_coarsen = prm.theta_coarsen;
+
+  CsvTable table(prm.output_directory + "/loops.csv", columns);
+  std::vector<LoopRow> rows;
+  std::vector<std::pair<double, std::string>> vtu_records;
+  std::string stop_reason = "max loops";
+  Timer wall;
+  std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.p << ")-dG(" << prm.r
+            << "), adjoint cG(" << q << "), " << prm.adaptivity_mode << ", goals:";
+  for (std::size_t g = 0; g < goals.size(); ++g)
+    std::cout << " " << goals[g].name << (has_exact ? " = " + num(J_exact[g]) : "");
+  std::cout << "\n";
+  std::cout << std::setw(4) << "loop" << std::setw(9) << "N_space" << std::setw(6) << "N_t"
+            << std::setw(10) << "N_tot" << std::setw(12) << "J_error" << std::setw(11)
+            << "eta_hx" << std::setw(11) << "eta_hy" << std::setw(11) << "eta_tau"
+            << std::setw(7) << "I_eff" << std::setw(7) << "ar" << std::setw(8) << "t[s]"
+            << std::endl;
+  try
+  {
+    for (unsigned int loop = 1; loop <= prm.loops; ++loop)
+    {
+      LoopRow row;
+      row.loop = loop;
+      Indicators<2> ind;
+      {
+        Space<2> primal(*scene, tria, prm.p, prm.delta0);
+        primal.setup();
+        row.n_space = primal.n_dofs();
+        row.n_t = mesh.n_slabs();
+        row.n_tot = row.n_space * row.n_t * basis.n_dofs();
+        if (prm.max_dofs > 0 && row.n_tot > prm.max_dofs)
+        {
+          stop_reason = "DoF budget: loop " + std::to_string(loop) + " would have N_tot = " +
+                        std::to_string(std::size_t(row.n_tot)) + " > adaptivity.max_dofs";
+          break;
+        }
+        MarchOptions opt;
+        opt.label = "loop " + std::to_string(loop);
+        opt.progress = false;
+        Timer t;
+        SlabOperator<2> op(primal, basis, prm.reuse_factorization);
+        const auto U = march_primal(primal, mesh, basis, op, opt);
+        row.t_primal = t.wall_time();
+
+        for (std::size_t g = 0; g < goals.size(); ++g)
+        {
+          row.J_goal.push_back(goal_value(primal, goals[g], mesh, basis, U));
+          row.J_goal_exact.push_back(J_exact[g]);
+          if (auto_weights)
+          {
+            const double d = lifted_goal(primal, goals[g], mesh, basis, U) - row.J_goal[g];
+            goals[g].weight = (d >= 0 ? 1. : -1.) / std::max(std::abs(row.J_goal[g]), 1e-12);
+          }
+          row.weights.push_back(goals[g].weight);
+          row.J += goals[g].weight * row.J_goal[g];
+          if (has_exact)
+            row.J_exact = (g ? row.J_exact : 0.) + goals[g].weight * J_exact[g];
+        }
+
+        t.restart();
+        Space<2> adjoint(*scene, tria, q, prm.delta0);
+        adjoint.setup();
+        SlabOperator<2> opq(adjoint, basis, prm.reuse_factorization);
+        const auto Z =
+          march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, goals), opt);
+        row.t_adjoint = t.wall_time();
+
+        t.restart();
+        ind = estimate(primal, adjoint, mesh, basis, U, Z, goals);
+        row.t_estimate = t.wall_time();
+        for (double e : ind.eta_tau_slab)
+          if (!std::isfinite(e))
+            throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
+        row.eta_h = ind.eta_h;
+        row.eta_h_total = ind.eta_h_total();
+        row.eta_tau = ind.eta_tau;
+        std::vector<double> ar_cell;
+        row.ar = max_aspect_ratio(tria, primal.mapping(), &ar_cell);
+
+        if (prm.vtu_loops > 0 && (loop % prm.vtu_loops == 0 || loop == prm.loops))
+        {
+          Vector<double> uT, ex(ar_cell.size()), ey(ar_cell.size()), et(ar_cell.size()),
+            ar(ar_cell.begin(), ar_cell.end());
+          for (unsigned int c = 0; c < ar_cell.size(); ++c)
+          {
+            ex[c] = ind.eta_h_cell[c][0];
+            ey[c] = ind.eta_h_cell[c][1];
+            et[c] = ind.eta_tau_cell[c];
+          }
+          combine_blocks(U.back(), basis.right_trace(), uT);
+          vtu_records.emplace_back(loop, write_vtu(primal, uT, scene->end_time,
+                                                   prm.output_directory, "loop", loop,
+                                                   {{"eta_hx", ex},
+                                                    {"eta_hy", ey},
+                                                    {"eta_tau", et},
+                                                    {"aspect_ratio", ar}}));
+          write_pvd(prm.output_directory, "loops", vtu_records);
+        }
+      }
+
+      bool stop = false;
+      if (loop == prm.loops)
+        stop = true;
+      else if (prm.tolerance > 0 && std::abs(row.eta_h_total + row.eta_tau) < prm.tolerance)
+      {
+        stop = true;
+        stop_reason = "tolerance";
+      }
+      else if (prm.max_memory_mb > 0 && peak_memory_mb() > prm.max_memory_mb)
+      {
+        stop = true;
+        stop_reason = "memory budget";
+      }
+      if (!stop)
+      {
+        Timer t;
+        mark_cells(tria, ind, marking);
+        tria.execute_coarsening_and_refinement();
+        mesh = refine_time(mesh, ind.eta_tau_slab, prm.theta_tau);
+        row.t_refine = t.wall_time();
+      }
+      row.mem = peak_memory_mb();
+      rows.push_back(row);
+      table.add_row(row.values());
+      write_latex(prm.output_directory + "/loops.tex", rows);
+      write_summary(prm, goals, rows, "running", "", wall.wall_time());
+      std::cout << std::setw(4) << loop << std::setw(9) << std::size_t(row.n_space)
+                << std::setw(6) << row.n_t << std::setw(10) << std::size_t(row.n_tot)
+                << std::setw(12) << std::setprecision(3) << row.J_error() << std::setw(11)
+                << row.eta_h[0] << std::setw(11) << row.eta_h[1] << std::setw(11)
+                << row.eta_tau << std::setw(7) << std::setprecision(3) << row.I_eff()
+                << std::setw(7) << std::setprecision(3) << row.ar << std::setw(8)
+                << std::setprecision(3)
+                << row.t_primal + row.t_adjoint + row.t_estimate + row.t_refine << std::endl;
+      if (stop)
+        break;
+    }
+  }
+  catch (const std::exception &e)
+  {
+    std::string what = e.what();
+    for (auto &c : what)
+      if (c == '"' || c == '\n')
+        c = '\'';
+    write_summary(prm, goals, rows, "failed: " + what, "error", wall.wall_time());
+    throw;
+  }
+  write_summary(prm, goals, rows, "ok", stop_reason, wall.wall_time());
+  std::cout << "tables: " << table.path() << ", " << prm.output_directory << "/loops.tex"
+            << " (stopped: " << stop_reason << ")\n";
+}
+} // namespace anisodwr
