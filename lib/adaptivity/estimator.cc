@@ -533,6 +533,8 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
     if (!goal_T.empty())
       goal_T.cell_vector(cell, jT);
     const auto c = cell->active_cell_index();
+    double supg_part = 0;                   // sum_i 1/2 S(u)(R_i z) on this cell
+    std::array<double, dim> lift_size{};   // ||I_2h,i u - u||^2 over the slabs
 
     for (unsigned int n = 0; n < N; ++n)
     {
@@ -577,7 +579,8 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
       {
         SlabFunction Riz = z;
         transform(ops.restriction(i), Riz);
-        double eta = 0.5 * apply(rho, difference(z, Riz), false) + 0.5 * apply(supg, Riz, false);
+        double eta = 0.5 * apply(rho, difference(z, Riz), false);
+        supg_part += 0.5 * apply(supg, Riz, false);
         if (lift[i].exists)
         {
           std::vector<Vector<double>> vk(m1);
@@ -587,6 +590,8 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
             vk[k] -= uk[k];
           }
           SlabFunction v = slab_function(kernel, basis, tau, vk);
+          for (const auto &vv : v.val)
+            lift_size[i] += tau * vv.norm_sqr();
           if (n > 0)
           {
             lift[i].apply(U[n - 1], v.minus, m1, m1 - 1);
@@ -650,6 +655,18 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
       ind.eta_tau_cell[c] += eta_tau;
       ind.eta_tau_slab[n] += eta_tau;
       ind.eta_tau += eta_tau;
+    }
+    // The SUPG consistency term S(u)(R_i z) is (nearly) the same for every i: its
+    // weight R_i z does not measure direction i. Its cell total is kept and split over
+    // the directions in proportion to the directional primal error I_2h,i u - u.
+    double total = 0;
+    for (double l : lift_size)
+      total += l;
+    for (unsigned int i = 0; i < dim; ++i)
+    {
+      const double share = (total > 0 ? lift_size[i] / total : 1. / dim) * supg_part;
+      ind.eta_h_cell[c][i] += share;
+      ind.eta_h[i] += share;
     }
   }
   return ind;

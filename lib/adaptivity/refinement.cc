@@ -43,6 +43,16 @@ unsigned int mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
     for (unsigned int c : largest(eta, options.theta_h))
       cut[c] = RefinementCase<dim>::isotropic_refinement;
   }
+  else if (options.marking == "joint")
+  {
+    // all (cell, direction) pairs ranked together; the theta_h * dim * n largest marked
+    std::vector<double> eta(n * dim);
+    for (unsigned int c = 0; c < n; ++c)
+      for (unsigned int i = 0; i < dim; ++i)
+        eta[c * dim + i] = std::abs(ind.eta_h_cell[c][i]);
+    for (unsigned int ci : largest(eta, options.theta_h))
+      cut[ci / dim] = cut[ci / dim] | RefinementCase<dim>::cut_axis(ci % dim);
+  }
   else
     for (unsigned int i = 0; i < dim; ++i)
     {

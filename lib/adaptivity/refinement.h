@@ -17,6 +17,11 @@ namespace anisodwr
 struct MarkingOptions
 {
   std::string mode = "anisotropic"; ///< anisotropic | isotropic | uniform
+  /// anisotropic mode: "joint" ranks all (cell, direction) pairs by |eta_h,i^K| together
+  /// and marks the theta_h fraction of them; "per_direction" marks the theta_h fraction
+  /// of cells separately in each direction (SPEC §6 literally; a cell whose indicators
+  /// are all large is then cut in every direction even if one dominates).
+  std::string marking = "joint";
   double theta_h = 0.25, theta_coarsen = 0.;
 };
 

@@ -77,7 +77,7 @@ std::vector<Entry> make_entries()
      "Number of levels of a convergence study."},
     {"goal", "kind", "scene", Kind::text, choice("scene|point|mean"),
      "scene: the scene's goals (moving_hump: mollified u(x_e1,T), u(x_e2,T); "
-     "boundary_layer: mean of u(T) over (0.5,1)x(0.25,0.75); others: u(0.5,0.5,T)); "
+     "boundary_layer: mean of u(T) over (0.5,1)x(0,1); others: u(0.5,0.5,T)); "
      "point: mollified point values at goal.locations; mean: means over the rectangles "
      "in goal.locations."},
     {"goal", "locations", "", Kind::text, text,
@@ -92,6 +92,10 @@ std::vector<Entry> make_entries()
     {"adaptivity", "mode", "anisotropic", Kind::text, choice("anisotropic|isotropic|uniform"),
      "anisotropic: mark per direction by |eta_h,i|; isotropic: mark by |eta_h|, refine "
      "isotropically; uniform: refine every cell."},
+    {"adaptivity", "marking", "joint", Kind::text, choice("joint|per_direction"),
+     "Anisotropic marking. joint: rank all (cell, direction) pairs by |eta_h,i^K| and mark "
+     "the theta_h fraction of the pairs; per_direction: mark the theta_h fraction of cells "
+     "in each direction separately (refines layer cells in every direction)."},
     {"adaptivity", "loops", "6", Kind::integer, integer(1, 1000), "Maximum number of DWR loops."},
     {"adaptivity", "theta_h", "0.25", Kind::real, real(0.),
      "Fraction of cells marked per direction (by count, largest indicators), in [0,1]."},
@@ -262,6 +266,7 @@ public:
     p.goal_radius = real("goal.radius");
     p.goal_weights = get("goal.weights");
     p.adaptivity_mode = get("adaptivity.mode");
+    p.marking = get("adaptivity.marking");
     p.loops = integer("adaptivity.loops");
     p.theta_h = fraction("adaptivity.theta_h");
     p.theta_tau = fraction("adaptivity.theta_tau");
@@ -397,6 +402,7 @@ std::string Parameters::to_json(unsigned int indent) const
     {"goal.radius", num(goal_radius)},
     {"goal.weights", goal_weights},
     {"adaptivity.mode", adaptivity_mode},
+    {"adaptivity.marking", marking},
     {"adaptivity.loops", std::to_string(loops)},
     {"adaptivity.theta_h", num(theta_h)},
     {"adaptivity.theta_tau", num(theta_tau)},

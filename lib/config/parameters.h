@@ -43,6 +43,7 @@ struct Parameters
 
   // [adaptivity]
   std::string adaptivity_mode = "anisotropic";
+  std::string marking = "joint";
   unsigned int loops = 6;
   double theta_h = 0.25;
   double theta_tau = 0.2;

@@ -272,7 +272,7 @@ void run_dwr(const Parameters &prm)
     for (std::size_t g = 0; g < goals.size(); ++g)
       J_exact[g] = exact_goal(*scene, goals[g]);
 
-  Triangulation<2> tria(Triangulation<2>::maximum_smoothing);
+  Triangulation<2> tria;
   scene->make_coarse_grid(tria);
   tria.refine_global(prm.initial_refinements);
   TimeMesh mesh = TimeMesh::uniform(scene->end_time, prm.n_slabs);
@@ -281,6 +281,7 @@ void run_dwr(const Parameters &prm)
   MarkingOptions marking;
   marking.mode = prm.adaptivity_mode;
   marking.theta_h = prm.theta_h;
+  marking.marking = prm.marking;
   marking.theta_coarsen = prm.theta_coarsen;
 
   CsvTable table(prm.output_directory + "/loops.csv", columns);
