@@ -533,7 +533,7 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
     if (!goal_T.empty())
       goal_T.cell_vector(cell, jT);
     const auto c = cell->active_cell_index();
-    double supg_part = 0;                   // sum_i 1/2 S(u)(R_i z) on this cell
+    double supg_part = 0;                   // S(u)(R_h z) on this cell
     std::array<double, dim> lift_size{};   // ||I_2h,i u - u||^2 over the slabs
 
     for (unsigned int n = 0; n < N; ++n)
@@ -573,6 +573,10 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
       kernel.goal_functional(tau, jt, Jf);
       const bool last = n + 1 == N;
       const SlabFunction u = slab_function(kernel, basis, tau, uk);
+      // S(u)(R_h z): with z_h = R_h z in the primal space, J(e) = rho(u)(z - z_h) +
+      // S(u)(z_h) and J(e) = rho*(z_h)(u - u_h) + S(u)(z_h) hold exactly, so the
+      // average of the two carries the full SUPG consistency term.
+      supg_part += apply(supg, Rhz, false);
 
       // eta_h,i
       for (unsigned int i = 0; i < dim; ++i)
@@ -580,7 +584,6 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
         SlabFunction Riz = z;
         transform(ops.restriction(i), Riz);
         double eta = 0.5 * apply(rho, difference(z, Riz), false);
-        supg_part += 0.5 * apply(supg, Riz, false);
         if (lift[i].exists)
         {
           std::vector<Vector<double>> vk(m1);
@@ -656,9 +659,10 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
       ind.eta_tau_slab[n] += eta_tau;
       ind.eta_tau += eta_tau;
     }
-    // The SUPG consistency term S(u)(R_i z) is (nearly) the same for every i: its
-    // weight R_i z does not measure direction i. Its cell total is kept and split over
-    // the directions in proportion to the directional primal error I_2h,i u - u.
+    // The SUPG consistency term is not directional (the seed formula's 1/2 S(u)(R_i z)
+    // is nearly the same for every i: R_i z does not measure direction i). Its cell
+    // total S(u)(R_h z) is split over the directions in proportion to the size of the
+    // directional primal error ||I_2h,i u - u||^2 (summed over the slabs).
     double total = 0;
     for (double l : lift_size)
       total += l;

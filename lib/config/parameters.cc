@@ -59,6 +59,9 @@ std::vector<Entry> make_entries()
      "Polynomial degree dG(r) in time (>= 0)."},
     {"discretization", "delta0", "1.0", Kind::real, real(0.),
      "SUPG parameter: delta_K = delta0 * |K|^(1/d); 0 turns SUPG off."},
+    {"discretization", "supg_length", "volume", Kind::text, choice("volume|streamline"),
+     "Cell length h_K in delta_K = delta0 h_K: volume = |K|^(1/d) (SPEC); streamline = the "
+     "length of K along b at its centre (t = 0), for anisotropic cells across layers."},
     {"discretization", "initial_refinements", "2", Kind::integer, integer(0, 14),
      "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},
     {"discretization", "n_slabs", "5", Kind::integer, integer(1, 1000000),
@@ -253,6 +256,7 @@ public:
     p.p = integer("discretization.p");
     p.r = integer("discretization.r");
     p.delta0 = real("discretization.delta0");
+    p.supg_length = get("discretization.supg_length");
     p.initial_refinements = integer("discretization.initial_refinements");
     p.n_slabs = integer("discretization.n_slabs");
     p.solver_type = get("solver.type");
@@ -389,6 +393,7 @@ std::string Parameters::to_json(unsigned int indent) const
     {"discretization.p", std::to_string(p)},
     {"discretization.r", std::to_string(r)},
     {"discretization.delta0", num(delta0)},
+    {"discretization.supg_length", supg_length},
     {"discretization.initial_refinements", std::to_string(initial_refinements)},
     {"discretization.n_slabs", std::to_string(n_slabs)},
     {"solver.type", solver_type},

@@ -22,6 +22,7 @@ struct Parameters
   unsigned int p = 1;
   unsigned int r = 0;
   double delta0 = 1.0;
+  std::string supg_length = "volume";
   unsigned int initial_refinements = 2;
   unsigned int n_slabs = 5;
 

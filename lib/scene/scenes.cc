@@ -187,10 +187,12 @@ BoundaryLayer::BoundaryLayer(double eps, const std::string &variant)
   require_variant("boundary_layer", variant, {""});
   epsilon = eps;
   exact_solution = std::make_unique<LayerSolution>(eps);
+  dirichlet_ids = {0, 1}; // x = 0, x = 1
+  neumann_ids = {2, 3};   // y = 0, y = 1: eps du/dn from u
 }
 void BoundaryLayer::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const
 {
-  unit_square(tria);
+  dealii::GridGenerator::hyper_cube(tria, 0., 1., true);
 }
 std::vector<GoalSpec> BoundaryLayer::default_goals(double) const
 {

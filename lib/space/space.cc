@@ -16,8 +16,9 @@ using namespace dealii;
 
 template <int dim>
 Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria, unsigned int degree,
-                  double delta0)
-    : scene(scene), delta0(delta0), fe(degree), map(1), dofs(tria)
+                  double delta0, bool streamline_length)
+    : scene(scene), delta0(delta0), streamline_length(streamline_length), fe(degree), map(1),
+      dofs(tria)
 {
 }
 
@@ -52,6 +53,36 @@ void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> 
 template <int dim>
 double Space<dim>::delta(const typename Triangulation<dim>::cell_iterator &cell) const
 {
+  if (delta0 == 0.)
+    return 0.;
+  if (streamline_length)
+  {
+    // length of the cell along b through its centre: 1 / ||J^{-1} beta||_inf (exact
+    // for parallelograms), beta = b/|b| at the centre at t = 0
+    const Point<dim> c = cell->center();
+    const Tensor<1, dim> b = scene.convection(c, 0.);
+    if (b.norm() > 0)
+    {
+      Tensor<2, dim> J;
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        // columns of the Jacobian of the (bi)linear map at the centre, from the vertices
+        Tensor<1, dim> col;
+        for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+        {
+          const double sign = (v >> d) & 1 ? 1. : -1.;
+          col += sign * cell->vertex(v) / (GeometryInfo<dim>::vertices_per_cell / 2);
+        }
+        for (unsigned int e = 0; e < dim; ++e)
+          J[e][d] = col[e];
+      }
+      const Tensor<1, dim> d = invert(J) * (b / b.norm());
+      double m = 0;
+      for (unsigned int i = 0; i < dim; ++i)
+        m = std::max(m, std::abs(d[i]));
+      return delta0 / m;
+    }
+  }
   return delta0 * std::pow(cell->measure(), 1.0 / dim);
 }
 

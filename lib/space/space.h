@@ -26,8 +26,10 @@ template <int dim>
 class Space
 {
 public:
+  /// SUPG: delta_K = delta0 h_K with h_K = |K|^{1/dim} (SPEC §2), or, if
+  /// `streamline_length`, h_K = the length of K along b (for anisotropic cells).
   Space(const Scene<dim> &scene, const dealii::Triangulation<dim> &tria, unsigned int degree,
-        double delta0);
+        double delta0, bool streamline_length = false);
 
   /// Distributes DoFs, builds constraints and the sparsity pattern (call after refinement).
   void setup();
@@ -53,13 +55,14 @@ public:
   /// L2 norm of u(t) - u_h over the domain (u_h a full, constraint-distributed vector).
   double l2_error(const dealii::Vector<double> &uh, double t) const;
 
-  /// SUPG parameter delta_K = delta0 |K|^{1/dim} of a cell.
+  /// SUPG parameter delta_K of a cell.
   double delta(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
 
   const Scene<dim> &scene;
 
 private:
   double delta0;
+  bool streamline_length;
   dealii::FE_Q<dim> fe;
   dealii::MappingQ<dim> map;
   dealii::DoFHandler<dim> dofs;

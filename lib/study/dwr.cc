@@ -297,7 +297,7 @@ void run_dwr(const Parameters &prm)
   std::cout << std::setw(4) << "loop" << std::setw(9) << "N_space" << std::setw(6) << "N_t"
             << std::setw(10) << "N_tot" << std::setw(12) << "J_error" << std::setw(11)
             << "eta_hx" << std::setw(11) << "eta_hy" << std::setw(11) << "eta_tau"
-            << std::setw(7) << "I_eff" << std::setw(7) << "ar" << std::setw(8) << "t[s]"
+            << std::setw(7) << "I_eff" << std::setw(9) << "ar" << std::setw(8) << "t[s]"
             << std::endl;
   try
   {
@@ -307,7 +307,7 @@ void run_dwr(const Parameters &prm)
       row.loop = loop;
       Indicators<2> ind;
       {
-        Space<2> primal(*scene, tria, prm.p, prm.delta0);
+        Space<2> primal(*scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline");
         primal.setup();
         row.n_space = primal.n_dofs();
         row.n_t = mesh.n_slabs();
@@ -342,7 +342,7 @@ void run_dwr(const Parameters &prm)
         }
 
         t.restart();
-        Space<2> adjoint(*scene, tria, q, prm.delta0);
+        Space<2> adjoint(*scene, tria, q, prm.delta0, prm.supg_length == "streamline");
         adjoint.setup();
         SlabOperator<2> opq(adjoint, basis, prm.reuse_factorization);
         const auto Z =
@@ -413,7 +413,7 @@ void run_dwr(const Parameters &prm)
                 << std::setw(12) << std::setprecision(3) << row.J_error() << std::setw(11)
                 << row.eta_h[0] << std::setw(11) << row.eta_h[1] << std::setw(11)
                 << row.eta_tau << std::setw(7) << std::setprecision(3) << row.I_eff()
-                << std::setw(7) << std::setprecision(3) << row.ar << std::setw(8)
+                << std::setw(9) << std::setprecision(4) << row.ar << std::setw(8)
                 << std::setprecision(3)
                 << row.t_primal + row.t_adjoint + row.t_estimate + row.t_refine << std::endl;
       if (stop)
