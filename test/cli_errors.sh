@@ -39,6 +39,11 @@ expect 2 "scene.variant" -- run "$cfg" --set scene.name=heat --set scene.variant
 expect 2 "section.key=value" -- run "$cfg" --set epsilon
 expect 2 "unknown option" -- run "$cfg" --bogus
 expect 2 "unknown command" -- frobnicate
+expect 2 "goal.weights" -- run "$cfg" --set study.mode=dwr --set goal.weights=1,2,3
+expect 2 "goal.locations" -- run "$cfg" --set study.mode=dwr --set goal.kind=point --set goal.locations=0.5
+expect 2 "goal.locations" -- run "$cfg" --set study.mode=dwr --set goal.kind=mean --set goal.locations="0.5,0.5,0.2,0.9"
+expect 2 "adaptivity.theta_h" -- run "$cfg" --set adaptivity.theta_h=1.5
+expect 2 "adaptivity.mode" -- run "$cfg" --set adaptivity.mode=random
 expect 0 "anisodwr run" -- --help
 
 # `defaults` prints a config that loads and runs.
