@@ -110,13 +110,6 @@ struct Problem
   }
 };
 
-double scale(const std::vector<double> &a)
-{
-  double s = 0;
-  for (double v : a)
-    s = std::max(s, std::abs(v));
-  return s;
-}
 } // namespace
 
 class Localization : public ::testing::TestWithParam<unsigned int>

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -20,10 +21,16 @@ namespace
 {
 using Table = std::vector<std::map<std::string, double>>;
 
-std::string env(const char *name)
+/// ANISODWR_BIN / ANISODWR_SOURCE from the environment, else the build's paths.
+std::string env(const std::string &name)
 {
-  const char *v = std::getenv(name);
-  return v ? v : "";
+  if (const char *v = std::getenv(name.c_str()); v && *v)
+    return v;
+  if (name == "ANISODWR_BIN")
+    return ANISODWR_BIN_PATH;
+  if (name == "ANISODWR_SOURCE")
+    return ANISODWR_SOURCE_DIR;
+  return "";
 }
 
 Table read_csv(const std::string &file)
@@ -58,7 +65,7 @@ int run(const std::string &config, const std::string &dir, const std::string &se
 {
   const std::string cmd = env("ANISODWR_BIN") + " run " + env("ANISODWR_SOURCE") + "/config/" +
                           config + " --output " + dir + " " + sets + " > " + dir + ".log 2>&1";
-  std::system(("rm -rf " + dir).c_str());
+  std::filesystem::remove_all(dir);
   return WEXITSTATUS(std::system(cmd.c_str()));
 }
 } // namespace

@@ -1,10 +1,5 @@
 #include "slab/adjoint_march.h"
 
-#include "config/errors.h"
-
-#include <cmath>
-#include <iostream>
-
 namespace anisodwr
 {
 using namespace dealii;
@@ -19,32 +14,20 @@ std::vector<Vector<double>> march_adjoint(const Space<dim> &space, const TimeMes
   Vector<double> coupling(space.n_dofs()), first, rhs;
   for (unsigned int n = N; n-- > 0;)
   {
-    try
-    {
-      op.prepare(mesh.start(n), mesh.tau(n));
-      slab_goal_rhs(goal, mesh, basis, n, rhs);
-      if (n + 1 < N)
-        add_kron_vector(1., basis.right_trace(), coupling, rhs);
-      op.solve(rhs, Z[n], true);
-      // M(t_{n-1})^T z(t_{n-1}^+): the coupling into slab n-1, computed while the
-      // operator still holds slab n's jump mass.
-      combine_blocks(Z[n], basis.left_trace(), first);
-      op.jump_mass().Tvmult(coupling, first);
-    }
-    catch (const NumericalError &)
-    {
-      throw;
-    }
-    catch (const std::exception &e)
-    {
-      throw NumericalError(options.label + ", adjoint slab " + std::to_string(n + 1) + "/" +
-                           std::to_string(N) + ": slab solver failed: " + e.what());
-    }
-    if (!std::isfinite(Z[n].l2_norm()))
-      throw NumericalError(options.label + ", adjoint slab " + std::to_string(n + 1) + "/" +
-                           std::to_string(N) + ": adjoint solution contains NaN/Inf");
-    if (options.progress)
-      std::cout << "  [" << options.label << "] adjoint slab " << n + 1 << "/" << N << std::endl;
+    guarded_slab_solve(
+      options, "adjoint", n, mesh,
+      [&]() {
+        op.prepare(mesh.start(n), mesh.tau(n));
+        slab_goal_rhs(goal, mesh, basis, n, rhs);
+        if (n + 1 < N)
+          add_kron_vector(1., basis.right_trace(), coupling, rhs);
+        op.solve(rhs, Z[n], true);
+        // M(t_{n-1})^T z(t_{n-1}^+): the coupling into slab n-1, computed while the
+        // operator still holds slab n's jump mass.
+        combine_blocks(Z[n], basis.left_trace(), first);
+        op.jump_mass().Tvmult(coupling, first);
+      },
+      Z[n]);
   }
   return Z;
 }

@@ -26,16 +26,30 @@ void assemble_slab_load(const Space<dim> &space, const TemporalBasis &basis, dou
   }
 }
 
-namespace
+void guarded_slab_solve(const MarchOptions &options, const std::string &kind, unsigned int n,
+                        const TimeMesh &mesh, const std::function<void()> &solve,
+                        const Vector<double> &result)
 {
-std::string slab_name(const MarchOptions &o, unsigned int n, const TimeMesh &mesh)
-{
-  std::ostringstream s;
-  s << o.label << ", slab " << n + 1 << "/" << mesh.n_slabs() << " (t in [" << mesh.t[n]
-    << ", " << mesh.t[n + 1] << "])";
-  return s.str();
+  std::ostringstream name;
+  name << options.label << ", " << kind << " slab " << n + 1 << "/" << mesh.n_slabs()
+       << " (t in [" << mesh.t[n] << ", " << mesh.t[n + 1] << "])";
+  try
+  {
+    solve();
+  }
+  catch (const NumericalError &)
+  {
+    throw;
+  }
+  catch (const std::exception &e)
+  {
+    throw NumericalError(name.str() + ": slab solver failed: " + e.what());
+  }
+  if (!std::isfinite(result.l2_norm()))
+    throw NumericalError(name.str() + ": " + kind + " solution contains NaN/Inf");
+  if (options.progress)
+    std::cout << "  [" << name.str() << "] |U| = " << result.l2_norm() << std::endl;
 }
-} // namespace
 
 template <int dim>
 std::vector<Vector<double>> march_primal(const Space<dim> &space, const TimeMesh &mesh,
@@ -48,31 +62,20 @@ std::vector<Vector<double>> march_primal(const Space<dim> &space, const TimeMesh
   for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
   {
     const double t0 = mesh.start(n), tau = mesh.tau(n);
-    try
-    {
-      op.prepare(t0, tau);
-      if (n > 0)
-      {
-        combine_blocks(U[n - 1], basis.right_trace(), last); // u(t_{n-1}^-)
-        op.jump_mass().vmult(coupling, last);
-      }
-      assemble_slab_load(space, basis, t0, tau, load);
-      add_kron_vector(1., basis.left_trace(), coupling, load);
-      op.solve(load, U[n]);
-    }
-    catch (const NumericalError &)
-    {
-      throw;
-    }
-    catch (const std::exception &e)
-    {
-      throw NumericalError(slab_name(options, n, mesh) + ": slab solver failed: " + e.what());
-    }
-    if (!std::isfinite(U[n].l2_norm()))
-      throw NumericalError(slab_name(options, n, mesh) + ": primal solution contains NaN/Inf");
-    if (options.progress)
-      std::cout << "  [" << options.label << "] primal slab " << n + 1 << "/" << mesh.n_slabs()
-                << "  t = " << mesh.t[n + 1] << "  |U| = " << U[n].l2_norm() << std::endl;
+    guarded_slab_solve(
+      options, "primal", n, mesh,
+      [&]() {
+        op.prepare(t0, tau);
+        if (n > 0)
+        {
+          combine_blocks(U[n - 1], basis.right_trace(), last); // u(t_{n-1}^-)
+          op.jump_mass().vmult(coupling, last);
+        }
+        assemble_slab_load(space, basis, t0, tau, load);
+        add_kron_vector(1., basis.left_trace(), coupling, load);
+        op.solve(load, U[n]);
+      },
+      U[n]);
   }
   return U;
 }

@@ -4,6 +4,7 @@
 #include "slab/slab_operator.h"
 #include "time/time_mesh.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,13 @@ struct MarchOptions
   std::string label = "run"; ///< names the loop/level in progress lines and errors
   bool progress = false;
 };
+
+/// Runs `solve` for slab n (0-based) of `mesh`; any exception becomes a NumericalError
+/// naming options.label, `kind` (primal/adjoint), the slab and its time interval, and
+/// so does a non-finite `result` afterwards. Prints a progress line if asked.
+void guarded_slab_solve(const MarchOptions &options, const std::string &kind, unsigned int n,
+                        const TimeMesh &mesh, const std::function<void()> &solve,
+                        const dealii::Vector<double> &result);
 
 /// Returns one interleaved coefficient vector per slab. Throws NumericalError naming
 /// the label and slab on solver failure or non-finite values.
