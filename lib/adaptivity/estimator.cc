@@ -712,6 +712,30 @@ SlabFunction other_function(const CellKernel<dim> &kernel, const TemporalBasis &
 }
 } // namespace
 
+namespace
+{
+/// sum over cells of rho(u)(w) (supg == false) or S(u)(w), one value per slab.
+template <int dim>
+std::vector<double> primal_form(const Space<dim> &primal, const Space<dim> &other,
+                                const TimeMesh &mesh, const TemporalBasis &basis,
+                                const std::vector<Vector<double>> &U,
+                                const std::vector<Vector<double>> &W, bool supg)
+{
+  std::vector<double> out(mesh.n_slabs(), 0.);
+  for_cells(primal, other, basis, [&](const CellKernel<dim> &k, const FullMatrix<double> &to_w,
+                                      const std::vector<types::global_dof_index> &idx) {
+    SlabFunctional rho, S;
+    for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+    {
+      k.primal_functionals(mesh.start(n), mesh.tau(n), U[n], n ? &U[n - 1] : nullptr, rho, S);
+      out[n] += apply(supg ? S : rho, other_function(k, basis, mesh.tau(n), W[n], idx, to_w),
+                      false);
+    }
+  });
+  return out;
+}
+} // namespace
+
 template <int dim>
 std::vector<double> LocalizedForms<dim>::primal_residual(const Space<dim> &primal,
                                                          const Space<dim> &other,
@@ -720,17 +744,7 @@ std::vector<double> LocalizedForms<dim>::primal_residual(const Space<dim> &prima
                                                          const std::vector<Vector<double>> &U,
                                                          const std::vector<Vector<double>> &W)
 {
-  std::vector<double> out(mesh.n_slabs(), 0.);
-  for_cells(primal, other, basis, [&](const CellKernel<dim> &k, const FullMatrix<double> &to_w,
-                                      const std::vector<types::global_dof_index> &idx) {
-    SlabFunctional rho, supg;
-    for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
-    {
-      k.primal_functionals(mesh.start(n), mesh.tau(n), U[n], n ? &U[n - 1] : nullptr, rho, supg);
-      out[n] += apply(rho, other_function(k, basis, mesh.tau(n), W[n], idx, to_w), false);
-    }
-  });
-  return out;
+  return primal_form(primal, other, mesh, basis, U, W, false);
 }
 
 template <int dim>
@@ -739,17 +753,7 @@ std::vector<double> LocalizedForms<dim>::supg(const Space<dim> &primal, const Sp
                                               const std::vector<Vector<double>> &U,
                                               const std::vector<Vector<double>> &Y)
 {
-  std::vector<double> out(mesh.n_slabs(), 0.);
-  for_cells(primal, other, basis, [&](const CellKernel<dim> &k, const FullMatrix<double> &to_w,
-                                      const std::vector<types::global_dof_index> &idx) {
-    SlabFunctional rho, supg;
-    for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
-    {
-      k.primal_functionals(mesh.start(n), mesh.tau(n), U[n], n ? &U[n - 1] : nullptr, rho, supg);
-      out[n] += apply(supg, other_function(k, basis, mesh.tau(n), Y[n], idx, to_w), false);
-    }
-  });
-  return out;
+  return primal_form(primal, other, mesh, basis, U, Y, true);
 }
 
 template <int dim>

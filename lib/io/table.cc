@@ -37,6 +37,16 @@ void CsvTable::add_row(const std::vector<double> &values)
   out << "\n" << std::flush;
 }
 
+std::string json_number(double v, int digits)
+{
+  if (!std::isfinite(v))
+    return "null";
+  std::ostringstream s;
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
 double peak_memory_mb()
 {
   rusage usage{};

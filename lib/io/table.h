@@ -21,6 +21,9 @@ private:
   std::ofstream out;
 };
 
+/// A number for JSON output: `null` for NaN/Inf, else `digits` significant digits.
+std::string json_number(double v, int digits = 12);
+
 /// Peak resident memory of this process in MB (getrusage).
 double peak_memory_mb();
 

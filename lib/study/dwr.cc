@@ -64,15 +64,7 @@ std::vector<double> numbers(const std::string &s, const std::string &key, unsign
   return v;
 }
 
-std::string num(double v)
-{
-  if (!std::isfinite(v))
-    return "null";
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return json_number(v, 12); }
 
 struct LoopRow
 {

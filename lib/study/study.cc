@@ -38,15 +38,7 @@ struct LevelResult
   std::vector<std::string> vtu_files;
 };
 
-std::string num(double v)
-{
-  if (!std::isfinite(v))
-    return "null";
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return json_number(v, 10); }
 
 std::string level_json(const LevelResult &r)
 {
