@@ -3,8 +3,8 @@
 
 Usage: compare_loops.py DIR MODE [MODE ...]
 Reads DIR/MODE/loops.csv for each mode; for each J-error level (powers of 10^(1/2)
-between the largest error every run reached below its first loop and the smallest
-error every run reached) it interpolates log N_space against log J_error between
+between the largest error every run reached after its first loop and the smallest
+error the first two runs both reached; a run that never got there shows nan) it interpolates log N_space against log J_error between
 consecutive loops and prints N_space per mode and the ratio to the first mode.
 Writes DIR/anisotropy.csv.
 """
@@ -20,15 +20,14 @@ def read(path):
 
 def dofs_for(rows, target):
     """Smallest N_space at which the run's J error drops to target (log-log interpolation)."""
-    best = math.inf
+    best = math.nan
     for a, b in zip(rows, rows[1:]):
         ea, eb = a["J_error"], b["J_error"]
         if ea > target >= eb and ea > 0 and eb > 0:
             s = (math.log(target) - math.log(ea)) / (math.log(eb) - math.log(ea))
-            best = min(best, math.exp(math.log(a["N_space"]) + s * (math.log(b["N_space"]) - math.log(a["N_space"]))))
-    for r in rows:
-        if r["J_error"] <= target:
-            best = min(best, r["N_space"]) if best == math.inf else best
+            best = min(best if math.isfinite(best) else math.inf, math.exp(math.log(a["N_space"]) + s * (math.log(b["N_space"]) - math.log(a["N_space"]))))
+    if not math.isfinite(best) and rows and rows[0]["J_error"] <= target:
+        best = rows[0]["N_space"]
     return best
 
 
@@ -36,7 +35,8 @@ def main():
     out, modes = sys.argv[1], sys.argv[2:]
     runs = {m: read(f"{out}/{m}/loops.csv") for m in modes}
     hi = min(max(r["J_error"] for r in rows[1:]) for rows in runs.values())
-    lo = max(min(r["J_error"] for r in rows) for rows in runs.values())
+    # down to the smallest error both of the first two runs reached (others: nan)
+    lo = max(min(r["J_error"] for r in runs[m]) for m in modes[:2])
     levels = []
     k = math.floor(2 * math.log10(hi))
     while 10 ** (k / 2) >= lo:
