@@ -75,8 +75,8 @@ Vector<double> operator_apply(const Space<2> &space, const TemporalBasis &basis,
 }
 
 /// F_n (+ the initial term at n = 0).
-Vector<double> load(const Space<2> &space, const TemporalBasis &basis, const TimeMesh &mesh,
-                    unsigned int n)
+Vector<double> load(const Space<2> &space, const TemporalBasis &basis,
+                    const TimeMesh &mesh, unsigned int n)
 {
   Vector<double> F;
   assemble_slab_load(space, basis, mesh.start(n), mesh.tau(n), F);
@@ -97,8 +97,9 @@ struct Problem
   TemporalBasis basis;
   TimeMesh mesh;
   Problem(unsigned int p, unsigned int r)
-      : scene(create_scene<2>(Parameters::from_overrides(
-          {"scene.name=manufactured", "scene.variant=poly_space", "scene.epsilon=0.5"}))),
+      : scene(create_scene<2>(Parameters::from_overrides({"scene.name=manufactured",
+                                                          "scene.variant=poly_space",
+                                                          "scene.epsilon=0.5"}))),
         basis(r), mesh(TimeMesh::uniform(0.6, 2))
   {
     mesh.t[1] = 0.25; // unequal slabs
@@ -120,8 +121,10 @@ TEST_P(Localization, PrimalResidualAndSupgSumToGlobalForms)
 {
   Problem s(1, GetParam());
   const unsigned int m = s.basis.n_dofs(), N = s.mesh.n_slabs();
-  const auto U = random_function(*s.galerkin, m, N, 1), W = random_function(*s.galerkin, m, N, 2);
-  const auto rho = LocalizedForms<2>::primal_residual(*s.supg, *s.galerkin, s.mesh, s.basis, U, W);
+  const auto U = random_function(*s.galerkin, m, N, 1),
+             W = random_function(*s.galerkin, m, N, 2);
+  const auto rho =
+      LocalizedForms<2>::primal_residual(*s.supg, *s.galerkin, s.mesh, s.basis, U, W);
   const auto S = LocalizedForms<2>::supg(*s.supg, *s.galerkin, s.mesh, s.basis, U, W);
   for (unsigned int n = 0; n < N; ++n)
   {
@@ -134,7 +137,7 @@ TEST_P(Localization, PrimalResidualAndSupgSumToGlobalForms)
     diff -= rd;
     const double global_S = W[n] * diff;
     EXPECT_NEAR(rho[n], global_rho, 1e-10 * std::max(1., std::abs(global_rho)))
-      << "slab " << n;
+        << "slab " << n;
     EXPECT_NEAR(S[n], global_S, 1e-10 * std::max(1., std::abs(global_S))) << "slab " << n;
     EXPECT_GT(std::abs(global_S), 1e-3) << "SUPG part must not be trivially zero";
   }
@@ -144,16 +147,21 @@ TEST_P(Localization, AdjointFormsSumToGlobalForms)
 {
   Problem s(1, GetParam());
   const unsigned int m = s.basis.n_dofs(), N = s.mesh.n_slabs();
-  const auto V = random_function(*s.galerkin, m, N, 3), Z = random_function(*s.galerkin, m, N, 4);
-  const auto A = LocalizedForms<2>::adjoint_form(*s.supg, *s.galerkin, s.mesh, s.basis, V, Z, false);
-  const auto Sd = LocalizedForms<2>::adjoint_form(*s.supg, *s.galerkin, s.mesh, s.basis, V, Z, true);
+  const auto V = random_function(*s.galerkin, m, N, 3),
+             Z = random_function(*s.galerkin, m, N, 4);
+  const auto A =
+      LocalizedForms<2>::adjoint_form(*s.supg, *s.galerkin, s.mesh, s.basis, V, Z, false);
+  const auto Sd =
+      LocalizedForms<2>::adjoint_form(*s.supg, *s.galerkin, s.mesh, s.basis, V, Z, true);
   for (unsigned int n = 0; n < N; ++n)
   {
     const Vector<double> a0 = operator_apply(*s.galerkin, s.basis, s.mesh, n, V);
     Vector<double> ad = operator_apply(*s.supg, s.basis, s.mesh, n, V);
     ad -= a0;
-    EXPECT_NEAR(A[n], Z[n] * a0, 1e-10 * std::max(1., std::abs(Z[n] * a0))) << "slab " << n;
-    EXPECT_NEAR(Sd[n], Z[n] * ad, 1e-10 * std::max(1., std::abs(Z[n] * ad))) << "slab " << n;
+    EXPECT_NEAR(A[n], Z[n] * a0, 1e-10 * std::max(1., std::abs(Z[n] * a0)))
+        << "slab " << n;
+    EXPECT_NEAR(Sd[n], Z[n] * ad, 1e-10 * std::max(1., std::abs(Z[n] * ad)))
+        << "slab " << n;
   }
 }
 

@@ -31,9 +31,10 @@ using Poly = std::function<double(const Point<2> &)>;
 /// x^a y^b plus lower-order terms.
 Poly poly(unsigned int a, unsigned int b)
 {
-  return [a, b](const Point<2> &x) {
-    return std::pow(x[0] - 0.3, a) * std::pow(x[1] + 0.2, b) + 0.7 * std::pow(x[0], a / 2) -
-           0.4 * x[1];
+  return [a, b](const Point<2> &x)
+  {
+    return std::pow(x[0] - 0.3, a) * std::pow(x[1] + 0.2, b) +
+           0.7 * std::pow(x[0], a / 2) - 0.4 * x[1];
   };
 }
 
@@ -60,7 +61,7 @@ void make_mesh(Triangulation<2> &tria, MeshKind kind)
       cell->set_refine_flag(RefinementCase<2>::cut_y);
     else
       cell->set_refine_flag(cell->center()[0] < 1 ? RefinementCase<2>::cut_x
-                                                   : RefinementCase<2>::cut_xy);
+                                                  : RefinementCase<2>::cut_xy);
   }
   tria.execute_coarsening_and_refinement();
 }
@@ -86,13 +87,14 @@ struct MeshSetup
 
 /// max over W support points of |local - f|.
 double error_on_cell(const SpatialOperators<2> &ops, const Mapping<2> &mapping,
-                     const DoFHandler<2>::active_cell_iterator &cell, const Vector<double> &w,
-                     const Poly &f)
+                     const DoFHandler<2>::active_cell_iterator &cell,
+                     const Vector<double> &w, const Poly &f)
 {
   double e = 0;
   const auto &pts = ops.weight_element().get_unit_support_points();
   for (unsigned int m = 0; m < pts.size(); ++m)
-    e = std::max(e, std::abs(w(m) - f(mapping.transform_unit_to_real_cell(cell, pts[m]))));
+    e = std::max(e,
+                 std::abs(w(m) - f(mapping.transform_unit_to_real_cell(cell, pts[m]))));
   return e;
 }
 } // namespace
@@ -120,7 +122,7 @@ TEST_P(Lifts, DirectionalLiftReproducesDegree2pAlongI)
       Vector<double> w;
       lift.apply(u, w);
       EXPECT_LT(error_on_cell(ops, s.mapping, cell, w, v), 1e-10)
-        << "direction " << i << ", cell " << cell->center();
+          << "direction " << i << ", cell " << cell->center();
     }
     EXPECT_EQ(with_patch, s.tria.n_active_cells()) << "every cell has a 1D patch here";
   }
@@ -186,11 +188,11 @@ TEST_P(Lifts, PatchLiftReproducesPolynomialsOfThePatch)
   EXPECT_GT(worst, 1e-6);
 }
 
-INSTANTIATE_TEST_SUITE_P(Meshes, Lifts,
-                         ::testing::Combine(::testing::Values(MeshKind::isotropic,
-                                                              MeshKind::aniso_x,
-                                                              MeshKind::aniso_y, MeshKind::mixed),
-                                            ::testing::Values(1u, 2u)));
+INSTANTIATE_TEST_SUITE_P(
+    Meshes, Lifts,
+    ::testing::Combine(::testing::Values(MeshKind::isotropic, MeshKind::aniso_x,
+                                         MeshKind::aniso_y, MeshKind::mixed),
+                       ::testing::Values(1u, 2u)));
 
 TEST(Restriction, ProjectionsThatKeepDegreePAlongI)
 {
@@ -238,7 +240,6 @@ TEST(Restriction, ProjectionsThatKeepDegreePAlongI)
     ops.restriction(0).mmult(Rxy, ops.restriction(1));
     Rxy.add(-1., ops.restriction(2));
     EXPECT_LT(Rxy.frobenius_norm(), 1e-12);
-
   }
 }
 
@@ -249,65 +250,66 @@ TEST(Restriction, CellwiseApplicationStaysInTheFiniteElementSpace)
   // without hanging faces (on a conforming mesh: on every cell, i.e. the cell-wise
   // results are continuous, and R_i is then a projection globally).
   for (MeshKind kind : {MeshKind::isotropic, MeshKind::mixed})
-  for (unsigned int p : {1u, 2u})
-  {
-    MeshSetup s(kind, 2 * p);
-    FE_Q<2> fe_p(p);
-    DoFHandler<2> dofs_p(s.tria);
-    dofs_p.distribute_dofs(fe_p);
-    const SpatialOperators<2> ops(dofs_p, s.mapping, 2 * p);
-    const unsigned int n = ops.weight_element().n_dofs_per_cell();
-    AffineConstraints<double> hanging;
-    DoFTools::make_hanging_node_constraints(s.dofs, hanging);
-    hanging.close();
-    std::mt19937 gen(5);
-    std::uniform_real_distribution<double> dist(-1, 1);
-    Vector<double> z(s.dofs.n_dofs());
-    for (auto &v : z)
-      v = dist(gen);
-    hanging.distribute(z);
-    std::vector<types::global_dof_index> idx(n);
-    auto apply_global = [&](unsigned int i, const Vector<double> &in) {
-      Vector<double> outg(in.size()), loc(n), r(n);
-      for (const auto &cell : s.dofs.active_cell_iterators())
-      {
-        cell->get_dof_indices(idx);
-        for (unsigned int l = 0; l < n; ++l)
-          loc(l) = in(idx[l]);
-        ops.restriction(i).vmult(r, loc);
-        for (unsigned int l = 0; l < n; ++l)
-          outg(idx[l]) = r(l);
-      }
-      hanging.distribute(outg);
-      return outg;
-    };
-    for (unsigned int i = 0; i <= 2; ++i)
+    for (unsigned int p : {1u, 2u})
     {
-      const Vector<double> Rz = apply_global(i, z);
-      if (kind == MeshKind::isotropic)
+      MeshSetup s(kind, 2 * p);
+      FE_Q<2> fe_p(p);
+      DoFHandler<2> dofs_p(s.tria);
+      dofs_p.distribute_dofs(fe_p);
+      const SpatialOperators<2> ops(dofs_p, s.mapping, 2 * p);
+      const unsigned int n = ops.weight_element().n_dofs_per_cell();
+      AffineConstraints<double> hanging;
+      DoFTools::make_hanging_node_constraints(s.dofs, hanging);
+      hanging.close();
+      std::mt19937 gen(5);
+      std::uniform_real_distribution<double> dist(-1, 1);
+      Vector<double> z(s.dofs.n_dofs());
+      for (auto &v : z)
+        v = dist(gen);
+      hanging.distribute(z);
+      std::vector<types::global_dof_index> idx(n);
+      auto apply_global = [&](unsigned int i, const Vector<double> &in)
       {
-        Vector<double> RRz = apply_global(i, Rz);
-        RRz -= Rz;
-        EXPECT_LT(RRz.linfty_norm(), 1e-12) << "global R_" << i << " is a projection";
-      }
-      for (const auto &cell : s.dofs.active_cell_iterators())
+        Vector<double> outg(in.size()), loc(n), r(n);
+        for (const auto &cell : s.dofs.active_cell_iterators())
+        {
+          cell->get_dof_indices(idx);
+          for (unsigned int l = 0; l < n; ++l)
+            loc(l) = in(idx[l]);
+          ops.restriction(i).vmult(r, loc);
+          for (unsigned int l = 0; l < n; ++l)
+            outg(idx[l]) = r(l);
+        }
+        hanging.distribute(outg);
+        return outg;
+      };
+      for (unsigned int i = 0; i <= 2; ++i)
       {
-        bool hanging_face = false;
-        for (unsigned int f = 0; f < 4; ++f)
-          hanging_face |= !cell->at_boundary(f) &&
-                          (cell->face(f)->has_children() || cell->neighbor_is_coarser(f));
-        if (hanging_face)
-          continue;
-        Vector<double> loc(n), r(n);
-        cell->get_dof_indices(idx);
-        for (unsigned int l = 0; l < n; ++l)
-          loc(l) = z(idx[l]);
-        ops.restriction(i).vmult(r, loc);
-        for (unsigned int l = 0; l < n; ++l)
-          EXPECT_NEAR(Rz(idx[l]), r(l), 1e-12);
+        const Vector<double> Rz = apply_global(i, z);
+        if (kind == MeshKind::isotropic)
+        {
+          Vector<double> RRz = apply_global(i, Rz);
+          RRz -= Rz;
+          EXPECT_LT(RRz.linfty_norm(), 1e-12) << "global R_" << i << " is a projection";
+        }
+        for (const auto &cell : s.dofs.active_cell_iterators())
+        {
+          bool hanging_face = false;
+          for (unsigned int f = 0; f < 4; ++f)
+            hanging_face |= !cell->at_boundary(f) && (cell->face(f)->has_children() ||
+                                                      cell->neighbor_is_coarser(f));
+          if (hanging_face)
+            continue;
+          Vector<double> loc(n), r(n);
+          cell->get_dof_indices(idx);
+          for (unsigned int l = 0; l < n; ++l)
+            loc(l) = z(idx[l]);
+          ops.restriction(i).vmult(r, loc);
+          for (unsigned int l = 0; l < n; ++l)
+            EXPECT_NEAR(Rz(idx[l]), r(l), 1e-12);
+        }
       }
     }
-  }
 }
 
 TEST(RadauReconstruction, ReproducesDegreeRPlusOneAndIsContinuous)
@@ -317,13 +319,15 @@ TEST(RadauReconstruction, ReproducesDegreeRPlusOneAndIsContinuous)
     const TemporalBasis basis(r);
     const TemporalReconstruction E(basis);
     // v(s) = sum_j c_j s^j of degree r+1
-    auto v = [r](double s) {
+    auto v = [r](double s)
+    {
       double x = 0;
       for (unsigned int j = 0; j <= r + 1; ++j)
         x += (1. + 0.3 * j) * std::pow(s, j) * (j % 2 ? -1 : 1);
       return x;
     };
-    auto dv = [r](double s) {
+    auto dv = [r](double s)
+    {
       double x = 0;
       for (unsigned int j = 1; j <= r + 1; ++j)
         x += (1. + 0.3 * j) * j * std::pow(s, j - 1) * (j % 2 ? -1 : 1);
@@ -359,7 +363,8 @@ TEST(RadauReconstruction, ReproducesDegreeRPlusOneAndIsContinuous)
       }
     }
     // continuity: E u(0) = outside value, E u(1) = U_r; E z(1) = outside, E z(0) = z(0^+)
-    const auto p0 = E.primal(0.), p1 = E.primal(1.), a1 = E.adjoint(1.), a0 = E.adjoint(0.);
+    const auto p0 = E.primal(0.), p1 = E.primal(1.), a1 = E.adjoint(1.),
+               a0 = E.adjoint(0.);
     EXPECT_NEAR(p0.outside, 1., 1e-14);
     EXPECT_NEAR(p1.slab[r], 1., 1e-14);
     EXPECT_NEAR(a1.outside, 1., 1e-14);
@@ -370,7 +375,8 @@ TEST(RadauReconstruction, ReproducesDegreeRPlusOneAndIsContinuous)
 
 TEST(ExactGoal, MovingHumpToTenDigits)
 {
-  const auto scene = create_scene<2>(Parameters::from_overrides({"scene.name=moving_hump"}));
+  const auto scene =
+      create_scene<2>(Parameters::from_overrides({"scene.name=moving_hump"}));
   for (const auto &g : scene->default_goals(0.01))
   {
     const double J = exact_goal(*scene, g);
@@ -383,7 +389,8 @@ TEST(ExactGoal, MovingHumpToTenDigits)
     for (unsigned int i = 0; i < q.size(); ++i)
       for (unsigned int j = 0; j < q.size(); ++j)
       {
-        const Point<2> x(c[0] - s + 2 * s * q.point(i)[0], c[1] - s + 2 * s * q.point(j)[0]);
+        const Point<2> x(c[0] - s + 2 * s * q.point(i)[0],
+                         c[1] - s + 2 * s * q.point(j)[0]);
         ref += 4 * s * s * q.weight(i) * q.weight(j) * mollifier(x, c, s, C) *
                scene->exact()->value(x, scene->end_time);
       }

@@ -63,8 +63,9 @@ Table read_csv(const std::string &file)
 /// Runs `anisodwr run CONFIG --output DIR --set ...`; returns the exit code.
 int run(const std::string &config, const std::string &dir, const std::string &sets)
 {
-  const std::string cmd = env("ANISODWR_BIN") + " run " + env("ANISODWR_SOURCE") + "/config/" +
-                          config + " --output " + dir + " " + sets + " > " + dir + ".log 2>&1";
+  const std::string cmd = env("ANISODWR_BIN") + " run " + env("ANISODWR_SOURCE") +
+                          "/config/" + config + " --output " + dir + " " + sets + " > " +
+                          dir + ".log 2>&1";
   std::filesystem::remove_all(dir);
   return WEXITSTATUS(std::system(cmd.c_str()));
 }
@@ -76,9 +77,10 @@ TEST(Regression, MovingHumpPaperFirstSixLoops)
   ASSERT_EQ(run("moving_hump_paper.json", dir, "--set adaptivity.loops=6"), 0);
   const Table got = read_csv(dir + "/loops.csv");
   ASSERT_EQ(got.size(), 6u);
-  const std::string ref_file = env("ANISODWR_SOURCE") + "/test/reference/moving_hump_paper.csv";
+  const std::string ref_file =
+      env("ANISODWR_SOURCE") + "/test/reference/moving_hump_paper.csv";
   const std::vector<std::string> exact{"N_space", "N_t"},
-    close{"J_error", "eta_hx", "eta_hy", "eta_tau", "I_eff"};
+      close{"J_error", "eta_hx", "eta_hy", "eta_tau", "I_eff"};
   if (env("ANISODWR_WRITE_REFERENCE") == "1")
   {
     std::ofstream out(ref_file);
@@ -98,7 +100,7 @@ TEST(Regression, MovingHumpPaperFirstSixLoops)
       EXPECT_EQ(got[l].at(k), ref[l].at(k)) << "loop " << l + 1 << ", " << k;
     for (const auto &k : close)
       EXPECT_NEAR(got[l].at(k), ref[l].at(k), 1e-6 * std::abs(ref[l].at(k)) + 1e-12)
-        << "loop " << l + 1 << ", " << k;
+          << "loop " << l + 1 << ", " << k;
   }
 }
 
@@ -109,7 +111,8 @@ TEST(Anisotropy, BoundaryLayerRefinesAcrossTheLayerOnly)
   const Table t = read_csv(dir + "/loops.csv");
   ASSERT_EQ(t.size(), 6u);
   for (std::size_t l = 1; l < t.size(); ++l)
-    EXPECT_GT(std::abs(t[l].at("eta_hx")), 5 * std::abs(t[l].at("eta_hy"))) << "loop " << l + 1;
+    EXPECT_GT(std::abs(t[l].at("eta_hx")), 5 * std::abs(t[l].at("eta_hy")))
+        << "loop " << l + 1;
   EXPECT_GE(t.back().at("ar_max"), 16.);
   EXPECT_LT(t.back().at("J_error"), 0.1 * t.front().at("J_error"));
 }
@@ -124,7 +127,8 @@ TEST(Budget, DofBudgetStopsCleanlyAndKeepsRows)
   ASSERT_GE(t.size(), 3u);
   EXPECT_LE(t.back().at("N_tot"), 1200.);
   std::ifstream s(dir + "/summary.json");
-  const std::string summary((std::istreambuf_iterator<char>(s)), std::istreambuf_iterator<char>());
+  const std::string summary((std::istreambuf_iterator<char>(s)),
+                            std::istreambuf_iterator<char>());
   EXPECT_NE(summary.find("\"stop_reason\": \"DoF budget"), std::string::npos);
   EXPECT_NE(summary.find("\"mean_T\""), std::string::npos);
   std::ifstream tex(dir + "/loops.tex");

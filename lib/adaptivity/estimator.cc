@@ -63,8 +63,7 @@ double apply(const SlabFunctional &F, const SlabFunction &v, bool jump_of_v)
 }
 
 /// The cell integrals of SPEC §5 on one cell and one slab.
-template <int dim>
-class CellKernel
+template <int dim> class CellKernel
 {
 public:
   using cell_iterator = typename DoFHandler<dim>::active_cell_iterator;
@@ -73,16 +72,17 @@ public:
       : primal(primal), scene(primal.scene), fe_p(primal.finite_element()), fe_w(fe_w),
         basis(basis), quad(fe_w.degree + 2), fquad(fe_w.degree + 2),
         fv_p(primal.mapping(), fe_p, quad,
-             update_values | update_gradients | update_hessians | update_quadrature_points |
-               update_JxW_values),
-        fv_w(primal.mapping(), fe_w, quad, update_values | update_gradients | update_hessians),
+             update_values | update_gradients | update_hessians |
+                 update_quadrature_points | update_JxW_values),
+        fv_w(primal.mapping(), fe_w, quad,
+             update_values | update_gradients | update_hessians),
         ff_p(primal.mapping(), fe_p, fquad,
              update_gradients | update_normal_vectors | update_quadrature_points |
-               update_JxW_values),
+                 update_JxW_values),
         ff_w(primal.mapping(), fe_w, fquad, update_values),
         fs_p(primal.mapping(), fe_p, fquad,
              update_gradients | update_normal_vectors | update_quadrature_points |
-               update_JxW_values),
+                 update_JxW_values),
         fs_w(primal.mapping(), fe_w, fquad, update_values),
         fn_p(primal.mapping(), fe_p, fquad, update_gradients | update_quadrature_points),
         fns_p(primal.mapping(), fe_p, fquad, update_gradients | update_quadrature_points)
@@ -185,7 +185,8 @@ public:
           lap += c(l) * trace(fv_p.shape_hessian(l, q));
         }
         const Tensor<1, dim> b = scene.convection(x, t);
-        const double R = scene.rhs(x, t) + eps * lap - ut - b * grad - scene.reaction(x, t) * uh;
+        const double R =
+            scene.rhs(x, t) + eps * lap - ut - b * grad - scene.reaction(x, t) * uh;
         const double jx = fv_p.JxW(q) * wt;
         for (unsigned int l = 0; l < nw; ++l)
         {
@@ -283,7 +284,8 @@ public:
           A.dt[m](l) += jx * phi * test;
           if (supg)
             A.val[m](l) +=
-              jx * (-eps * trace(fv_w.shape_hessian(l, q)) + b * gphi + alpha * phi) * test;
+                jx * (-eps * trace(fv_w.shape_hessian(l, q)) + b * gphi + alpha * phi) *
+                test;
           else
             A.val[m](l) += jx * (eps * (gphi * gz) + (b * gphi + alpha * phi) * zq);
         }
@@ -311,7 +313,8 @@ private:
     std::vector<types::global_dof_index> nb_dofs;
   };
 
-  std::vector<types::global_dof_index> dofs_of(const typename DoFHandler<dim>::cell_iterator &c)
+  std::vector<types::global_dof_index>
+  dofs_of(const typename DoFHandler<dim>::cell_iterator &c)
   {
     std::vector<types::global_dof_index> d(fe_p.n_dofs_per_cell());
     c->get_dof_indices(d);
@@ -394,7 +397,8 @@ private:
 
 /// W-local coefficients of temporal node k of an interleaved slab vector.
 void gather(const Vector<double> &U, const std::vector<types::global_dof_index> &dofs,
-            unsigned int m1, unsigned int k, const FullMatrix<double> &to_w, Vector<double> &out)
+            unsigned int m1, unsigned int k, const FullMatrix<double> &to_w,
+            Vector<double> &out)
 {
   Vector<double> loc(dofs.size());
   for (unsigned int l = 0; l < dofs.size(); ++l)
@@ -429,7 +433,8 @@ SlabFunction slab_function(const CellKernel<dim> &kernel, const TemporalBasis &b
 
 void transform(const FullMatrix<double> &R, SlabFunction &f)
 {
-  auto one = [&](Vector<double> &v) {
+  auto one = [&](Vector<double> &v)
+  {
     if (!v.size())
       return;
     Vector<double> t(v.size());
@@ -467,10 +472,10 @@ unsigned int weight_degree(const Space<dim> &primal, const Space<dim> &other)
 } // namespace
 
 template <int dim>
-Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
-                         const TimeMesh &mesh, const TemporalBasis &basis,
-                         const std::vector<Vector<double>> &U, const std::vector<Vector<double>> &Z,
-                         const std::vector<GoalSpec> &goals)
+Indicators<dim>
+estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
+         const TemporalBasis &basis, const std::vector<Vector<double>> &U,
+         const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals)
 {
   const auto &tria = primal.dof_handler().get_triangulation();
   const SpatialOperators<dim> ops(primal.dof_handler(), primal.mapping(),
@@ -481,7 +486,7 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
   CellKernel<dim> kernel(primal, fe_w, basis);
   const TemporalReconstruction recon(basis);
   const LocalGoal<dim> goal_t(primal.mapping(), fe_w, tria, goals, true),
-    goal_T(primal.mapping(), fe_w, tria, goals, false);
+      goal_T(primal.mapping(), fe_w, tria, goals, false);
   const unsigned int N = mesh.n_slabs(), m1 = basis.n_dofs(), nw = fe_w.n_dofs_per_cell();
 
   // z(T^+) = M^{-1} j_T (the end-time goal's representer in the adjoint space) and
@@ -491,9 +496,9 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
   {
     GoalVectors gv = assemble_goal_vectors(adjoint, goals);
     SparseMatrix<double> M(adjoint.sparsity());
-    MatrixCreator::create_mass_matrix(adjoint.mapping(), adjoint.dof_handler(),
-                                      QGauss<dim>(adjoint.degree() + 1), M,
-                                      (const Function<dim> *)nullptr, adjoint.constraints());
+    MatrixCreator::create_mass_matrix(
+        adjoint.mapping(), adjoint.dof_handler(), QGauss<dim>(adjoint.degree() + 1), M,
+        (const Function<dim> *)nullptr, adjoint.constraints());
     adjoint.constraints().condense(gv.at_end);
     for (unsigned int i = 0; i < M.m(); ++i)
       if (adjoint.constraints().is_constrained(i))
@@ -506,7 +511,7 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
   }
   {
     const ScalarFunctionFromFunctionObject<dim> f0(
-      [&](const Point<dim> &x) { return primal.scene.initial_value(x); });
+        [&](const Point<dim> &x) { return primal.scene.initial_value(x); });
     VectorTools::interpolate(primal.mapping(), primal.dof_handler(), f0, u0);
   }
 
@@ -533,8 +538,8 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
     if (!goal_T.empty())
       goal_T.cell_vector(cell, jT);
     const auto c = cell->active_cell_index();
-    double supg_part = 0;                   // S(u)(R_h z) on this cell
-    std::array<double, dim> lift_size{};   // ||I_2h,i u - u||^2 over the slabs
+    double supg_part = 0;                // S(u)(R_h z) on this cell
+    std::array<double, dim> lift_size{}; // ||I_2h,i u - u||^2 over the slabs
 
     for (unsigned int n = 0; n < N; ++n)
     {
@@ -654,7 +659,7 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
       // J'(E u - u): the part over I (E u - u vanishes at t_n, so the end part is 0)
       const double jv = apply(Jf, eu, false);
       const double eta_tau =
-        0.5 * apply(rho, ez, false) + 0.5 * (jv - apply(A_z, eu, true));
+          0.5 * apply(rho, ez, false) + 0.5 * (jv - apply(A_z, eu, true));
       ind.eta_tau_cell[c] += eta_tau;
       ind.eta_tau_slab[n] += eta_tau;
       ind.eta_tau += eta_tau;
@@ -680,8 +685,8 @@ namespace
 {
 /// Runs `body(kernel, cell, to_w, other_dofs)` on every cell.
 template <int dim, typename Body>
-void for_cells(const Space<dim> &primal, const Space<dim> &other, const TemporalBasis &basis,
-               Body body)
+void for_cells(const Space<dim> &primal, const Space<dim> &other,
+               const TemporalBasis &basis, Body body)
 {
   const SpatialOperators<dim> ops(primal.dof_handler(), primal.mapping(),
                                   weight_degree(primal, other));
@@ -692,8 +697,8 @@ void for_cells(const Space<dim> &primal, const Space<dim> &other, const Temporal
   {
     kernel.reinit(cell);
     typename DoFHandler<dim>::active_cell_iterator co(
-      &primal.dof_handler().get_triangulation(), cell->level(), cell->index(),
-      &other.dof_handler());
+        &primal.dof_handler().get_triangulation(), cell->level(), cell->index(),
+        &other.dof_handler());
     co->get_dof_indices(idx);
     body(kernel, to_w, idx);
   }
@@ -722,70 +727,75 @@ std::vector<double> primal_form(const Space<dim> &primal, const Space<dim> &othe
                                 const std::vector<Vector<double>> &W, bool supg)
 {
   std::vector<double> out(mesh.n_slabs(), 0.);
-  for_cells(primal, other, basis, [&](const CellKernel<dim> &k, const FullMatrix<double> &to_w,
-                                      const std::vector<types::global_dof_index> &idx) {
-    SlabFunctional rho, S;
-    for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
-    {
-      k.primal_functionals(mesh.start(n), mesh.tau(n), U[n], n ? &U[n - 1] : nullptr, rho, S);
-      out[n] += apply(supg ? S : rho, other_function(k, basis, mesh.tau(n), W[n], idx, to_w),
-                      false);
-    }
-  });
+  for_cells(primal, other, basis,
+            [&](const CellKernel<dim> &k, const FullMatrix<double> &to_w,
+                const std::vector<types::global_dof_index> &idx)
+            {
+              SlabFunctional rho, S;
+              for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+              {
+                k.primal_functionals(mesh.start(n), mesh.tau(n), U[n],
+                                     n ? &U[n - 1] : nullptr, rho, S);
+                out[n] +=
+                    apply(supg ? S : rho,
+                          other_function(k, basis, mesh.tau(n), W[n], idx, to_w), false);
+              }
+            });
   return out;
 }
 } // namespace
 
 template <int dim>
-std::vector<double> LocalizedForms<dim>::primal_residual(const Space<dim> &primal,
-                                                         const Space<dim> &other,
-                                                         const TimeMesh &mesh,
-                                                         const TemporalBasis &basis,
-                                                         const std::vector<Vector<double>> &U,
-                                                         const std::vector<Vector<double>> &W)
+std::vector<double>
+LocalizedForms<dim>::primal_residual(const Space<dim> &primal, const Space<dim> &other,
+                                     const TimeMesh &mesh, const TemporalBasis &basis,
+                                     const std::vector<Vector<double>> &U,
+                                     const std::vector<Vector<double>> &W)
 {
   return primal_form(primal, other, mesh, basis, U, W, false);
 }
 
 template <int dim>
-std::vector<double> LocalizedForms<dim>::supg(const Space<dim> &primal, const Space<dim> &other,
-                                              const TimeMesh &mesh, const TemporalBasis &basis,
-                                              const std::vector<Vector<double>> &U,
-                                              const std::vector<Vector<double>> &Y)
+std::vector<double>
+LocalizedForms<dim>::supg(const Space<dim> &primal, const Space<dim> &other,
+                          const TimeMesh &mesh, const TemporalBasis &basis,
+                          const std::vector<Vector<double>> &U,
+                          const std::vector<Vector<double>> &Y)
 {
   return primal_form(primal, other, mesh, basis, U, Y, true);
 }
 
 template <int dim>
-std::vector<double> LocalizedForms<dim>::adjoint_form(const Space<dim> &primal,
-                                                      const Space<dim> &other,
-                                                      const TimeMesh &mesh,
-                                                      const TemporalBasis &basis,
-                                                      const std::vector<Vector<double>> &V,
-                                                      const std::vector<Vector<double>> &Zt,
-                                                      bool supg_derivative)
+std::vector<double> LocalizedForms<dim>::adjoint_form(
+    const Space<dim> &primal, const Space<dim> &other, const TimeMesh &mesh,
+    const TemporalBasis &basis, const std::vector<Vector<double>> &V,
+    const std::vector<Vector<double>> &Zt, bool supg_derivative)
 {
   std::vector<double> out(mesh.n_slabs(), 0.);
   const unsigned int m1 = basis.n_dofs();
-  for_cells(primal, other, basis, [&](const CellKernel<dim> &k, const FullMatrix<double> &to_w,
-                                      const std::vector<types::global_dof_index> &idx) {
-    SlabFunctional A;
-    for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
-    {
-      const double tau = mesh.tau(n);
-      k.adjoint_functional(mesh.start(n), tau, other_function(k, basis, tau, Zt[n], idx, to_w),
-                           supg_derivative, A);
-      SlabFunction v = other_function(k, basis, tau, V[n], idx, to_w);
-      if (n > 0)
-        gather(V[n - 1], idx, m1, m1 - 1, to_w, v.minus);
-      out[n] += apply(A, v, true);
-    }
-  });
+  for_cells(primal, other, basis,
+            [&](const CellKernel<dim> &k, const FullMatrix<double> &to_w,
+                const std::vector<types::global_dof_index> &idx)
+            {
+              SlabFunctional A;
+              for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+              {
+                const double tau = mesh.tau(n);
+                k.adjoint_functional(mesh.start(n), tau,
+                                     other_function(k, basis, tau, Zt[n], idx, to_w),
+                                     supg_derivative, A);
+                SlabFunction v = other_function(k, basis, tau, V[n], idx, to_w);
+                if (n > 0)
+                  gather(V[n - 1], idx, m1, m1 - 1, to_w, v.minus);
+                out[n] += apply(A, v, true);
+              }
+            });
   return out;
 }
 
 template Indicators<2> estimate<2>(const Space<2> &, const Space<2> &, const TimeMesh &,
-                                   const TemporalBasis &, const std::vector<Vector<double>> &,
+                                   const TemporalBasis &,
+                                   const std::vector<Vector<double>> &,
                                    const std::vector<Vector<double>> &,
                                    const std::vector<GoalSpec> &);
 template struct LocalizedForms<2>;

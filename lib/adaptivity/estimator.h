@@ -35,8 +35,7 @@
 
 namespace anisodwr
 {
-template <int dim>
-struct Indicators
+template <int dim> struct Indicators
 {
   /// per active cell (active_cell_index), summed over slabs
   std::vector<std::array<double, dim>> eta_h_cell;
@@ -66,22 +65,21 @@ Indicators<dim> estimate(const Space<dim> &primal, const Space<dim> &adjoint,
 /// The localized forms summed over all cells, one value per slab, for given global
 /// functions (for the localization tests). u in `primal`'s space; the weights w, y, v
 /// and the adjoint-slot function zt in `other`'s space (same mesh, degree <= W's).
-template <int dim>
-struct LocalizedForms
+template <int dim> struct LocalizedForms
 {
-  static std::vector<double> primal_residual(const Space<dim> &primal, const Space<dim> &other,
-                                             const TimeMesh &mesh, const TemporalBasis &basis,
-                                             const std::vector<dealii::Vector<double>> &U,
-                                             const std::vector<dealii::Vector<double>> &W);
+  static std::vector<double>
+  primal_residual(const Space<dim> &primal, const Space<dim> &other, const TimeMesh &mesh,
+                  const TemporalBasis &basis,
+                  const std::vector<dealii::Vector<double>> &U,
+                  const std::vector<dealii::Vector<double>> &W);
   static std::vector<double> supg(const Space<dim> &primal, const Space<dim> &other,
                                   const TimeMesh &mesh, const TemporalBasis &basis,
                                   const std::vector<dealii::Vector<double>> &U,
                                   const std::vector<dealii::Vector<double>> &Y);
   /// A(v)(zt) (without J') and S'(v, zt) for v in `other`'s space, zt in `other`'s space.
-  static std::vector<double> adjoint_form(const Space<dim> &primal, const Space<dim> &other,
-                                          const TimeMesh &mesh, const TemporalBasis &basis,
-                                          const std::vector<dealii::Vector<double>> &V,
-                                          const std::vector<dealii::Vector<double>> &Zt,
-                                          bool supg_derivative);
+  static std::vector<double>
+  adjoint_form(const Space<dim> &primal, const Space<dim> &other, const TimeMesh &mesh,
+               const TemporalBasis &basis, const std::vector<dealii::Vector<double>> &V,
+               const std::vector<dealii::Vector<double>> &Zt, bool supg_derivative);
 };
 } // namespace anisodwr

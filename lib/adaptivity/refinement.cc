@@ -19,7 +19,8 @@ std::vector<unsigned int> largest(const std::vector<double> &v, double theta)
 {
   std::vector<unsigned int> order(v.size());
   std::iota(order.begin(), order.end(), 0u);
-  const unsigned int k = std::min<std::size_t>(v.size(), std::ceil(theta * v.size() - 1e-12));
+  const unsigned int k =
+      std::min<std::size_t>(v.size(), std::ceil(theta * v.size() - 1e-12));
   std::partial_sort(order.begin(), order.begin() + k, order.end(),
                     [&](unsigned int a, unsigned int b) { return v[a] > v[b]; });
   order.resize(k);
@@ -39,7 +40,8 @@ unsigned int mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
   {
     std::vector<double> eta(n);
     for (unsigned int c = 0; c < n; ++c)
-      eta[c] = std::abs(std::accumulate(ind.eta_h_cell[c].begin(), ind.eta_h_cell[c].end(), 0.));
+      eta[c] = std::abs(
+          std::accumulate(ind.eta_h_cell[c].begin(), ind.eta_h_cell[c].end(), 0.));
     for (unsigned int c : largest(eta, options.theta_h))
       cut[c] = RefinementCase<dim>::isotropic_refinement;
   }
@@ -67,7 +69,8 @@ unsigned int mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
   {
     std::vector<double> eta(n);
     for (unsigned int c = 0; c < n; ++c)
-      eta[c] = -std::abs(std::accumulate(ind.eta_h_cell[c].begin(), ind.eta_h_cell[c].end(), 0.));
+      eta[c] = -std::abs(
+          std::accumulate(ind.eta_h_cell[c].begin(), ind.eta_h_cell[c].end(), 0.));
     for (unsigned int c : largest(eta, options.theta_coarsen))
       coarsen[c] = cut[c] == RefinementCase<dim>::no_refinement;
   }

@@ -32,7 +32,8 @@ template <int dim>
 unsigned int mark_cells(dealii::Triangulation<dim> &tria, const Indicators<dim> &ind,
                         const MarkingOptions &options);
 
-/// Bisects the ceil(theta_tau N) slabs with the largest |eta_tau^n| (none if theta_tau = 0).
+/// Bisects the ceil(theta_tau N) slabs with the largest |eta_tau^n| (none if theta_tau =
+/// 0).
 TimeMesh refine_time(const TimeMesh &mesh, const std::vector<double> &eta_tau_slab,
                      double theta_tau);
 

@@ -11,8 +11,8 @@ namespace anisodwr
 {
 using namespace dealii;
 
-void LocalMap::apply(const Vector<double> &global, Vector<double> &local, unsigned int stride,
-                     unsigned int offset) const
+void LocalMap::apply(const Vector<double> &global, Vector<double> &local,
+                     unsigned int stride, unsigned int offset) const
 {
   local.reinit(matrix.m());
   for (unsigned int m = 0; m < matrix.m(); ++m)
@@ -25,7 +25,8 @@ void LocalMap::apply(const Vector<double> &global, Vector<double> &local, unsign
 }
 
 template <int dim>
-SpatialOperators<dim>::SpatialOperators(const DoFHandler<dim> &dofs, const Mapping<dim> &mapping,
+SpatialOperators<dim>::SpatialOperators(const DoFHandler<dim> &dofs,
+                                        const Mapping<dim> &mapping,
                                         unsigned int weight_degree)
     : dofs(dofs), mapping(mapping), p(dofs.get_fe().degree), fe_w(weight_degree)
 {
@@ -56,7 +57,8 @@ SpatialOperators<dim>::SpatialOperators(const DoFHandler<dim> &dofs, const Mappi
 }
 
 template <int dim>
-FullMatrix<double> SpatialOperators<dim>::interpolation_from(const FiniteElement<dim> &fe) const
+FullMatrix<double>
+SpatialOperators<dim>::interpolation_from(const FiniteElement<dim> &fe) const
 {
   const auto &pts = fe_w.get_unit_support_points();
   FullMatrix<double> I(fe_w.n_dofs_per_cell(), fe.n_dofs_per_cell());
@@ -118,11 +120,12 @@ SpatialOperators<dim>::partner(const cell_iterator &K, unsigned int i) const
 }
 
 template <int dim>
-LocalMap SpatialOperators<dim>::directional_lift(const cell_iterator &K, unsigned int i) const
+LocalMap SpatialOperators<dim>::directional_lift(const cell_iterator &K,
+                                                 unsigned int i) const
 {
   const auto P = partner(K, i);
   if (P.state() != IteratorState::valid)
-    return {};
+    return LocalMap();
   std::vector<std::vector<double>> nodes(dim, gl);
   const auto [lo, hi] = extent(K, P, i);
   nodes[i] = extended_nodes(lo, hi);
@@ -133,13 +136,13 @@ template <int dim>
 LocalMap SpatialOperators<dim>::patch_lift(const cell_iterator &K) const
 {
   if (K->level() == 0)
-    return {};
+    return LocalMap();
   const auto parent = K->parent();
   std::vector<cell_iterator> cells{K};
   for (unsigned int c = 0; c < parent->n_children(); ++c)
   {
     if (!parent->child(c)->is_active())
-      return {};
+      return LocalMap();
     if (parent->child(c)->index() != K->index())
       cells.emplace_back(&dofs.get_triangulation(), parent->child(c)->level(),
                          parent->child(c)->index(), &dofs);
@@ -185,7 +188,8 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator &K,
     n_grid *= (n[d] = nodes[d].size());
   const auto &wpts = fe_w.get_unit_support_points();
   const double tol = 1e-8;
-  auto inside = [&](const Point<dim> &x) {
+  auto inside = [&](const Point<dim> &x)
+  {
     for (unsigned int d = 0; d < dim; ++d)
       if (x[d] < -tol || x[d] > 1 + tol)
         return false;
@@ -223,7 +227,7 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator &K,
         }
     }
     if (c_found == candidates.size())
-      return {};
+      return LocalMap();
     for (unsigned int d = 0; d < dim; ++d)
       xc[d] = std::min(1., std::max(0., xc[d]));
     for (unsigned int m = 0; m < nw; ++m)

@@ -39,24 +39,26 @@ struct LocalMap
              unsigned int stride = 1, unsigned int offset = 0) const;
 };
 
-template <int dim>
-class SpatialOperators
+template <int dim> class SpatialOperators
 {
 public:
   using cell_iterator = typename dealii::DoFHandler<dim>::active_cell_iterator;
 
-  /// `dofs` is the primal DoFHandler (FE_Q(p)); W = FE_Q(weight_degree), weight_degree >= 2p.
-  SpatialOperators(const dealii::DoFHandler<dim> &dofs, const dealii::Mapping<dim> &mapping,
-                   unsigned int weight_degree);
+  /// `dofs` is the primal DoFHandler (FE_Q(p)); W = FE_Q(weight_degree), weight_degree >=
+  /// 2p.
+  SpatialOperators(const dealii::DoFHandler<dim> &dofs,
+                   const dealii::Mapping<dim> &mapping, unsigned int weight_degree);
 
   const dealii::FE_Q<dim> &weight_element() const { return fe_w; }
   /// R_i (i < dim) or R_h (i == dim) on W-local coefficients.
   const dealii::FullMatrix<double> &restriction(unsigned int i) const { return R[i]; }
   /// Interpolation of cell-local coefficients of `fe` (degree <= W's) into W.
-  dealii::FullMatrix<double> interpolation_from(const dealii::FiniteElement<dim> &fe) const;
+  dealii::FullMatrix<double>
+  interpolation_from(const dealii::FiniteElement<dim> &fe) const;
 
   LocalMap directional_lift(const cell_iterator &cell, unsigned int direction) const;
-  /// exists == false when K's parent is not a patch (K is level 0 or a sibling is refined).
+  /// exists == false when K's parent is not a patch (K is level 0 or a sibling is
+  /// refined).
   LocalMap patch_lift(const cell_iterator &cell) const;
 
   /// The partner cell of rule 1/2 above, or an invalid iterator (rule 3).

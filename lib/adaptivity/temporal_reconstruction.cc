@@ -2,7 +2,8 @@
 
 namespace anisodwr
 {
-double lagrange(const std::vector<double> &nodes, unsigned int j, double s, bool derivative)
+double lagrange(const std::vector<double> &nodes, unsigned int j, double s,
+                bool derivative)
 {
   const unsigned int n = nodes.size();
   if (!derivative)

@@ -45,84 +45,95 @@ std::vector<Entry> make_entries()
   auto boolean = std::make_shared<P::Bool>();
   auto text = std::make_shared<P::Anything>();
   return {
-    {"scene", "name", "moving_hump", Kind::text, choice("moving_hump|manufactured|heat|boundary_layer"),
-     "Benchmark scene (see SCENES.md): moving_hump, manufactured, heat or boundary_layer."},
-    {"scene", "variant", "", Kind::text, text,
-     "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
-     "alpha), poly_space (rotating coefficients, spatial part in Q2). heat: poly "
-     "(default) or trig. moving_hump: none."},
-    {"scene", "epsilon", "1e-6", Kind::real, real(0.), "Diffusion coefficient, > 0."},
-    {"scene", "end_time", "0.5", Kind::real, real(0.), "Final time T > 0."},
-    {"discretization", "p", "1", Kind::integer, integer(1, 4),
-     "Polynomial degree of FE_Q in space (1..4)."},
-    {"discretization", "r", "0", Kind::integer, integer(0, 10),
-     "Polynomial degree dG(r) in time (>= 0)."},
-    {"discretization", "delta0", "1.0", Kind::real, real(0.),
-     "SUPG parameter: delta_K = delta0 * |K|^(1/d); 0 turns SUPG off."},
-    {"discretization", "supg_length", "volume", Kind::text, choice("volume|streamline"),
-     "Cell length h_K in delta_K = delta0 h_K: volume = |K|^(1/d) (SPEC); streamline = the "
-     "length of K along b at its centre (t = 0), for anisotropic cells across layers."},
-    {"discretization", "initial_refinements", "2", Kind::integer, integer(0, 14),
-     "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},
-    {"discretization", "n_slabs", "5", Kind::integer, integer(1, 1000000),
-     "Number of equal time slabs."},
-    {"solver", "type", "direct", Kind::text, choice("direct"),
-     "Slab solver: direct (UMFPACK)."},
-    {"solver", "reuse_factorization", "true", Kind::boolean, boolean,
-     "Reuse the LU factorization while the slab matrix is unchanged (same tau, "
-     "coefficients constant in time)."},
-    {"study", "mode", "single", Kind::text, choice("single|convergence|dwr"),
-     "single: one primal run; convergence: uniform refinement over study.levels levels; "
-     "dwr: the adaptive DWR loop (section adaptivity, goals from section goal)."},
-    {"study", "refine", "both", Kind::text, choice("space|time|both"),
-     "Convergence study: refine h (space), tau (time) or both per level."},
-    {"study", "levels", "4", Kind::integer, integer(1, 20),
-     "Number of levels of a convergence study."},
-    {"goal", "kind", "scene", Kind::text, choice("scene|point|mean"),
-     "scene: the scene's goals (moving_hump: mollified u(x_e1,T), u(x_e2,T); "
-     "boundary_layer: mean of u(T) over (0.5,1)x(0,1); others: u(0.5,0.5,T)); "
-     "point: mollified point values at goal.locations; mean: means over the rectangles "
-     "in goal.locations."},
-    {"goal", "locations", "", Kind::text, text,
-     "point: 'x,y; x,y; ...'; mean: 'x0,y0,x1,y1; ...' (lower-left, upper-right)."},
-    {"goal", "over_time", "false", Kind::boolean, boolean,
-     "Custom goals: integrate over I (true) or evaluate at T (false)."},
-    {"goal", "radius", "0.01", Kind::real, real(0.),
-     "Mollifier radius s of point goals; 0 = exact point evaluation (Dirac)."},
-    {"goal", "weights", "1", Kind::text, text,
-     "Weights w_i of J_w = sum w_i J_i: one number for all goals, a comma list (one per "
-     "goal), or auto (w_i = sign(J_i(I_2h u) - J_i(u_h)) / max(|J_i(u_h)|, 1e-12))."},
-    {"adaptivity", "mode", "anisotropic", Kind::text, choice("anisotropic|isotropic|uniform"),
-     "anisotropic: mark per direction by |eta_h,i|; isotropic: mark by |eta_h|, refine "
-     "isotropically; uniform: refine every cell."},
-    {"adaptivity", "marking", "joint", Kind::text, choice("joint|per_direction"),
-     "Anisotropic marking. joint: rank all (cell, direction) pairs by |eta_h,i^K| and mark "
-     "the theta_h fraction of the pairs; per_direction: mark the theta_h fraction of cells "
-     "in each direction separately (refines layer cells in every direction)."},
-    {"adaptivity", "loops", "6", Kind::integer, integer(1, 1000), "Maximum number of DWR loops."},
-    {"adaptivity", "theta_h", "0.25", Kind::real, real(0.),
-     "Fraction of cells marked per direction (by count, largest indicators), in [0,1]."},
-    {"adaptivity", "theta_tau", "0.2", Kind::real, real(0.),
-     "Fraction of slabs bisected (largest |eta_tau^n|), in [0,1]; 0 keeps the time mesh."},
-    {"adaptivity", "theta_coarsen", "0", Kind::real, real(0.),
-     "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1]."},
-    {"adaptivity", "tolerance", "0", Kind::real, real(0.),
-     "Stop when |eta_tau_h| < tolerance (0: no tolerance)."},
-    {"adaptivity", "max_dofs", "0", Kind::real, real(0.),
-     "Stop before a loop whose N_tot would exceed this (0: no budget)."},
-    {"adaptivity", "max_memory_mb", "0", Kind::real, real(0.),
-     "Stop when the peak memory exceeds this many MB (0: no budget)."},
-    {"adaptivity", "adjoint_degree", "0", Kind::integer, integer(0, 8),
-     "Polynomial degree q of the adjoint; 0 means q = 2p."},
-    {"output", "directory", "results/moving_hump", Kind::text, text,
-     "Output directory (created if missing); --output overrides it."},
-    {"output", "vtu_every", "1", Kind::integer, integer(0, 1000000),
-     "Write VTU of u(t_n^-) every k-th slab (and at T); 0 writes none."},
-    {"output", "progress", "true", Kind::boolean, boolean,
-     "Print one progress line per slab to stdout."},
-    {"output", "vtu_loops", "1", Kind::integer, integer(0, 1000000),
-     "DWR: write VTU (mesh, u(T), indicators, aspect ratio) every k-th loop and at the "
-     "last loop; 0 writes none."},
+      {"scene", "name", "moving_hump", Kind::text,
+       choice("moving_hump|manufactured|heat|boundary_layer"),
+       "Benchmark scene (see SCENES.md): moving_hump, manufactured, heat or "
+       "boundary_layer."},
+      {"scene", "variant", "", Kind::text, text,
+       "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
+       "alpha), poly_space (rotating coefficients, spatial part in Q2). heat: poly "
+       "(default) or trig. moving_hump: none."},
+      {"scene", "epsilon", "1e-6", Kind::real, real(0.), "Diffusion coefficient, > 0."},
+      {"scene", "end_time", "0.5", Kind::real, real(0.), "Final time T > 0."},
+      {"discretization", "p", "1", Kind::integer, integer(1, 4),
+       "Polynomial degree of FE_Q in space (1..4)."},
+      {"discretization", "r", "0", Kind::integer, integer(0, 10),
+       "Polynomial degree dG(r) in time (>= 0)."},
+      {"discretization", "delta0", "1.0", Kind::real, real(0.),
+       "SUPG parameter: delta_K = delta0 * |K|^(1/d); 0 turns SUPG off."},
+      {"discretization", "supg_length", "volume", Kind::text, choice("volume|streamline"),
+       "Cell length h_K in delta_K = delta0 h_K: volume = |K|^(1/d) (SPEC); streamline = "
+       "the "
+       "length of K along b at its centre (t = 0), for anisotropic cells across layers."},
+      {"discretization", "initial_refinements", "2", Kind::integer, integer(0, 14),
+       "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},
+      {"discretization", "n_slabs", "5", Kind::integer, integer(1, 1000000),
+       "Number of equal time slabs."},
+      {"solver", "type", "direct", Kind::text, choice("direct"),
+       "Slab solver: direct (UMFPACK)."},
+      {"solver", "reuse_factorization", "true", Kind::boolean, boolean,
+       "Reuse the LU factorization while the slab matrix is unchanged (same tau, "
+       "coefficients constant in time)."},
+      {"study", "mode", "single", Kind::text, choice("single|convergence|dwr"),
+       "single: one primal run; convergence: uniform refinement over study.levels "
+       "levels; "
+       "dwr: the adaptive DWR loop (section adaptivity, goals from section goal)."},
+      {"study", "refine", "both", Kind::text, choice("space|time|both"),
+       "Convergence study: refine h (space), tau (time) or both per level."},
+      {"study", "levels", "4", Kind::integer, integer(1, 20),
+       "Number of levels of a convergence study."},
+      {"goal", "kind", "scene", Kind::text, choice("scene|point|mean"),
+       "scene: the scene's goals (moving_hump: mollified u(x_e1,T), u(x_e2,T); "
+       "boundary_layer: mean of u(T) over (0.5,1)x(0,1); others: u(0.5,0.5,T)); "
+       "point: mollified point values at goal.locations; mean: means over the rectangles "
+       "in goal.locations."},
+      {"goal", "locations", "", Kind::text, text,
+       "point: 'x,y; x,y; ...'; mean: 'x0,y0,x1,y1; ...' (lower-left, upper-right)."},
+      {"goal", "over_time", "false", Kind::boolean, boolean,
+       "Custom goals: integrate over I (true) or evaluate at T (false)."},
+      {"goal", "radius", "0.01", Kind::real, real(0.),
+       "Mollifier radius s of point goals; 0 = exact point evaluation (Dirac)."},
+      {"goal", "weights", "1", Kind::text, text,
+       "Weights w_i of J_w = sum w_i J_i: one number for all goals, a comma list (one "
+       "per "
+       "goal), or auto (w_i = sign(J_i(I_2h u) - J_i(u_h)) / max(|J_i(u_h)|, 1e-12))."},
+      {"adaptivity", "mode", "anisotropic", Kind::text,
+       choice("anisotropic|isotropic|uniform"),
+       "anisotropic: mark per direction by |eta_h,i|; isotropic: mark by |eta_h|, refine "
+       "isotropically; uniform: refine every cell."},
+      {"adaptivity", "marking", "joint", Kind::text, choice("joint|per_direction"),
+       "Anisotropic marking. joint: rank all (cell, direction) pairs by |eta_h,i^K| and "
+       "mark "
+       "the theta_h fraction of the pairs; per_direction: mark the theta_h fraction of "
+       "cells "
+       "in each direction separately (refines layer cells in every direction)."},
+      {"adaptivity", "loops", "6", Kind::integer, integer(1, 1000),
+       "Maximum number of DWR loops."},
+      {"adaptivity", "theta_h", "0.25", Kind::real, real(0.),
+       "Fraction of cells marked per direction (by count, largest indicators), in "
+       "[0,1]."},
+      {"adaptivity", "theta_tau", "0.2", Kind::real, real(0.),
+       "Fraction of slabs bisected (largest |eta_tau^n|), in [0,1]; 0 keeps the time "
+       "mesh."},
+      {"adaptivity", "theta_coarsen", "0", Kind::real, real(0.),
+       "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1]."},
+      {"adaptivity", "tolerance", "0", Kind::real, real(0.),
+       "Stop when |eta_tau_h| < tolerance (0: no tolerance)."},
+      {"adaptivity", "max_dofs", "0", Kind::real, real(0.),
+       "Stop before a loop whose N_tot would exceed this (0: no budget)."},
+      {"adaptivity", "max_memory_mb", "0", Kind::real, real(0.),
+       "Stop when the peak memory exceeds this many MB (0: no budget)."},
+      {"adaptivity", "adjoint_degree", "0", Kind::integer, integer(0, 8),
+       "Polynomial degree q of the adjoint; 0 means q = 2p."},
+      {"output", "directory", "results/moving_hump", Kind::text, text,
+       "Output directory (created if missing); --output overrides it."},
+      {"output", "vtu_every", "1", Kind::integer, integer(0, 1000000),
+       "Write VTU of u(t_n^-) every k-th slab (and at T); 0 writes none."},
+      {"output", "progress", "true", Kind::boolean, boolean,
+       "Print one progress line per slab to stdout."},
+      {"output", "vtu_loops", "1", Kind::integer, integer(0, 1000000),
+       "DWR: write VTU (mesh, u(T), indicators, aspect ratio) every k-th loop and at the "
+       "last loop; 0 writes none."},
   };
 }
 
@@ -141,7 +152,8 @@ std::size_t edit_distance(const std::string &a, const std::string &b)
   {
     cur[0] = i;
     for (std::size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+      cur[j] =
+          std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
     std::swap(prev, cur);
   }
   return prev[b.size()];
@@ -160,7 +172,8 @@ std::string suggestion(const std::string &word, const std::vector<std::string> &
   std::string list;
   for (const auto &k : known)
     list += (list.empty() ? "" : ", ") + k;
-  return (best.empty() ? "" : " (did you mean '" + best + "'?)") + "; expected one of: " + list;
+  return (best.empty() ? "" : " (did you mean '" + best + "'?)") +
+         "; expected one of: " + list;
 }
 
 /// Holds the values while reading; checks each value against its pattern.
@@ -196,9 +209,9 @@ public:
       throw InputError(origin + ": unknown key '" + section + "." + key + "'" +
                        suggestion(key, keys));
     if (!found->pattern->match(value))
-      throw InputError(origin + ": invalid value '" + value + "' for key '" + section + "." +
-                       key + "'; expected " + found->pattern->description(
-                                                  PatternBase::OutputStyle::Text) +
+      throw InputError(origin + ": invalid value '" + value + "' for key '" + section +
+                       "." + key + "'; expected " +
+                       found->pattern->description(PatternBase::OutputStyle::Text) +
                        " (" + found->doc + ")");
     values[section + "." + key] = value;
   }
@@ -215,8 +228,8 @@ public:
     }
     catch (const boost::property_tree::json_parser_error &e)
     {
-      throw InputError(file + ": invalid JSON at line " + std::to_string(e.line()) + ": " +
-                       e.message());
+      throw InputError(file + ": invalid JSON at line " + std::to_string(e.line()) +
+                       ": " + e.message());
     }
     for (const auto &[section, sub] : tree)
     {
@@ -230,8 +243,9 @@ public:
         if (!key.empty() && key[0] == '#')
           continue;
         if (!leaf.empty())
-          throw InputError(file + ": key '" + section + "." + key +
-                           "' must hold a number, boolean or string, not an object or list");
+          throw InputError(
+              file + ": key '" + section + "." + key +
+              "' must hold a number, boolean or string, not an object or list");
         set(section, key, leaf.data(), file);
       }
     }
@@ -334,25 +348,28 @@ std::string format(const std::map<std::string, std::string> &values, bool with_d
   {
     if (e.section != section)
     {
-      out << (section.empty() ? "\n" : "\n" + pad + "  },\n") << pad << "  \"" << e.section
-          << "\": {";
+      out << (section.empty() ? "\n" : "\n" + pad + "  },\n") << pad << "  \""
+          << e.section << "\": {";
       section = e.section;
     }
     else
       out << ",";
     if (with_docs)
       out << "\n"
-          << pad << "    \"#" << e.key << "\": \"" << e.doc << " Allowed: "
-          << e.pattern->description(PatternBase::OutputStyle::Text) << "\",";
+          << pad << "    \"#" << e.key << "\": \"" << e.doc
+          << " Allowed: " << e.pattern->description(PatternBase::OutputStyle::Text)
+          << "\",";
     out << "\n"
-        << pad << "    \"" << e.key << "\": " << json_value(e, values.at(e.section + "." + e.key));
+        << pad << "    \"" << e.key
+        << "\": " << json_value(e, values.at(e.section + "." + e.key));
   }
   out << "\n" << pad << "  }\n" << pad << "}";
   return out.str();
 }
 } // namespace
 
-Parameters Parameters::read(const std::string &file, const std::vector<std::string> &overrides)
+Parameters Parameters::read(const std::string &file,
+                            const std::vector<std::string> &overrides)
 {
   Reader reader;
   reader.read_file(file);
@@ -379,47 +396,48 @@ void Parameters::print_defaults(std::ostream &out)
 
 std::string Parameters::to_json(unsigned int indent) const
 {
-  auto num = [](double v) {
+  auto num = [](double v)
+  {
     std::ostringstream s;
     s.precision(17);
     s << v;
     return s.str();
   };
   std::map<std::string, std::string> v{
-    {"scene.name", scene},
-    {"scene.variant", variant},
-    {"scene.epsilon", num(epsilon)},
-    {"scene.end_time", num(end_time)},
-    {"discretization.p", std::to_string(p)},
-    {"discretization.r", std::to_string(r)},
-    {"discretization.delta0", num(delta0)},
-    {"discretization.supg_length", supg_length},
-    {"discretization.initial_refinements", std::to_string(initial_refinements)},
-    {"discretization.n_slabs", std::to_string(n_slabs)},
-    {"solver.type", solver_type},
-    {"solver.reuse_factorization", reuse_factorization ? "true" : "false"},
-    {"study.mode", mode},
-    {"study.refine", refine},
-    {"study.levels", std::to_string(levels)},
-    {"goal.kind", goal_kind},
-    {"goal.locations", goal_locations},
-    {"goal.over_time", goal_over_time ? "true" : "false"},
-    {"goal.radius", num(goal_radius)},
-    {"goal.weights", goal_weights},
-    {"adaptivity.mode", adaptivity_mode},
-    {"adaptivity.marking", marking},
-    {"adaptivity.loops", std::to_string(loops)},
-    {"adaptivity.theta_h", num(theta_h)},
-    {"adaptivity.theta_tau", num(theta_tau)},
-    {"adaptivity.theta_coarsen", num(theta_coarsen)},
-    {"adaptivity.tolerance", num(tolerance)},
-    {"adaptivity.max_dofs", num(max_dofs)},
-    {"adaptivity.max_memory_mb", num(max_memory_mb)},
-    {"adaptivity.adjoint_degree", std::to_string(adjoint_degree)},
-    {"output.vtu_loops", std::to_string(vtu_loops)},
-    {"output.directory", output_directory},
-    {"output.vtu_every", std::to_string(vtu_every)},
-    {"output.progress", progress ? "true" : "false"}};
+      {"scene.name", scene},
+      {"scene.variant", variant},
+      {"scene.epsilon", num(epsilon)},
+      {"scene.end_time", num(end_time)},
+      {"discretization.p", std::to_string(p)},
+      {"discretization.r", std::to_string(r)},
+      {"discretization.delta0", num(delta0)},
+      {"discretization.supg_length", supg_length},
+      {"discretization.initial_refinements", std::to_string(initial_refinements)},
+      {"discretization.n_slabs", std::to_string(n_slabs)},
+      {"solver.type", solver_type},
+      {"solver.reuse_factorization", reuse_factorization ? "true" : "false"},
+      {"study.mode", mode},
+      {"study.refine", refine},
+      {"study.levels", std::to_string(levels)},
+      {"goal.kind", goal_kind},
+      {"goal.locations", goal_locations},
+      {"goal.over_time", goal_over_time ? "true" : "false"},
+      {"goal.radius", num(goal_radius)},
+      {"goal.weights", goal_weights},
+      {"adaptivity.mode", adaptivity_mode},
+      {"adaptivity.marking", marking},
+      {"adaptivity.loops", std::to_string(loops)},
+      {"adaptivity.theta_h", num(theta_h)},
+      {"adaptivity.theta_tau", num(theta_tau)},
+      {"adaptivity.theta_coarsen", num(theta_coarsen)},
+      {"adaptivity.tolerance", num(tolerance)},
+      {"adaptivity.max_dofs", num(max_dofs)},
+      {"adaptivity.max_memory_mb", num(max_memory_mb)},
+      {"adaptivity.adjoint_degree", std::to_string(adjoint_degree)},
+      {"output.vtu_loops", std::to_string(vtu_loops)},
+      {"output.directory", output_directory},
+      {"output.vtu_every", std::to_string(vtu_every)},
+      {"output.progress", progress ? "true" : "false"}};
   return format(v, false, indent);
 }
 } // namespace anisodwr

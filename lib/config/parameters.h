@@ -62,7 +62,8 @@ struct Parameters
 
   /// Reads `file`, then applies the overrides "section.key=value" in order.
   /// Throws InputError naming the file, key and value on any problem.
-  static Parameters read(const std::string &file, const std::vector<std::string> &overrides);
+  static Parameters read(const std::string &file,
+                         const std::vector<std::string> &overrides);
   /// Defaults with overrides only (no file); used by tests.
   static Parameters from_overrides(const std::vector<std::string> &overrides);
   /// Prints the complete default configuration as documented JSON.

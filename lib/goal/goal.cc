@@ -17,13 +17,15 @@ using namespace dealii;
 
 double mollifier_constant(unsigned int dim, double s)
 {
-  // int_{R^d} exp(1 - 1/(1-|y|^2)) dy = |S^{d-1}| int_0^1 exp(1 - 1/(1-rho^2)) rho^{d-1} drho
+  // int_{R^d} exp(1 - 1/(1-|y|^2)) dy = |S^{d-1}| int_0^1 exp(1 - 1/(1-rho^2)) rho^{d-1}
+  // drho
   const QIterated<1> q(QGauss<1>(8), 400);
   double radial = 0;
   for (unsigned int i = 0; i < q.size(); ++i)
   {
     const double rho = q.point(i)[0];
-    radial += q.weight(i) * std::exp(1. - 1. / (1. - rho * rho)) * std::pow(rho, dim - 1.);
+    radial +=
+        q.weight(i) * std::exp(1. - 1. / (1. - rho * rho)) * std::pow(rho, dim - 1.);
   }
   const double sphere = dim == 1 ? 2. : dim == 2 ? 2. * M_PI : 4. * M_PI;
   return 1. / (sphere * radial * std::pow(s, double(dim)));
@@ -38,8 +40,7 @@ double mollifier(const Point<dim> &x, const Point<dim> &c, double s, double C)
 
 namespace
 {
-template <int dim>
-Point<dim> to_point(const GoalSpec &goal, const std::vector<double> &v)
+template <int dim> Point<dim> to_point(const GoalSpec &goal, const std::vector<double> &v)
 {
   if (v.size() != dim)
     throw InputError("goal '" + goal.name + "': expected " + std::to_string(dim) +
@@ -53,8 +54,7 @@ Point<dim> to_point(const GoalSpec &goal, const std::vector<double> &v)
 
 /// One goal of a LocalGoal: its density (mollifier or 1/|rectangle|) or, for s = 0,
 /// the point and the cell that holds it.
-template <int dim>
-struct LocalGoal<dim>::Part
+template <int dim> struct LocalGoal<dim>::Part
 {
   GoalSpec goal;
   Point<dim> c, lo, hi;
@@ -94,8 +94,8 @@ struct LocalGoal<dim>::Part
 
 template <int dim>
 LocalGoal<dim>::LocalGoal(const Mapping<dim> &mapping, const FiniteElement<dim> &fe,
-                          const Triangulation<dim> &tria, const std::vector<GoalSpec> &goals,
-                          bool over_time)
+                          const Triangulation<dim> &tria,
+                          const std::vector<GoalSpec> &goals, bool over_time)
     : mapping(mapping), fe(fe)
 {
   for (const auto &goal : goals)
@@ -110,7 +110,8 @@ LocalGoal<dim>::LocalGoal(const Mapping<dim> &mapping, const FiniteElement<dim> 
       if (goal.radius == 0.)
       {
         part->dirac = true;
-        const auto found = GridTools::find_active_cell_around_point(mapping, tria, part->c);
+        const auto found =
+            GridTools::find_active_cell_around_point(mapping, tria, part->c);
         part->dirac_cell = found.first;
         part->dirac_unit = found.second;
       }
@@ -146,8 +147,9 @@ LocalGoal<dim>::LocalGoal(const Mapping<dim> &mapping, const FiniteElement<dim> 
 }
 
 template <int dim>
-bool LocalGoal<dim>::cell_vector(const typename Triangulation<dim>::active_cell_iterator &cell,
-                                 Vector<double> &j) const
+bool LocalGoal<dim>::cell_vector(
+    const typename Triangulation<dim>::active_cell_iterator &cell,
+    Vector<double> &j) const
 {
   j.reinit(fe.n_dofs_per_cell());
   bool nonzero = false;
@@ -170,7 +172,8 @@ bool LocalGoal<dim>::cell_vector(const typename Triangulation<dim>::active_cell_
     fv.reinit(cell);
     for (unsigned int q = 0; q < part->quad->size(); ++q)
     {
-      const double w = part->goal.weight * part->density(fv.quadrature_point(q)) * fv.JxW(q);
+      const double w =
+          part->goal.weight * part->density(fv.quadrature_point(q)) * fv.JxW(q);
       if (w != 0.)
       {
         nonzero = true;
@@ -183,12 +186,14 @@ bool LocalGoal<dim>::cell_vector(const typename Triangulation<dim>::active_cell_
 }
 
 template <int dim>
-void assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal, Vector<double> &j)
+void assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal,
+                          Vector<double> &j)
 {
   GoalSpec unit = goal;
   unit.weight = 1;
   const LocalGoal<dim> local(space.mapping(), space.finite_element(),
-                             space.dof_handler().get_triangulation(), {unit}, goal.over_time);
+                             space.dof_handler().get_triangulation(), {unit},
+                             goal.over_time);
   j.reinit(space.n_dofs());
   Vector<double> jc;
   std::vector<types::global_dof_index> idx(space.finite_element().n_dofs_per_cell());
@@ -202,7 +207,8 @@ void assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal, Vector<
 }
 
 template <int dim>
-GoalVectors assemble_goal_vectors(const Space<dim> &space, const std::vector<GoalSpec> &goals)
+GoalVectors assemble_goal_vectors(const Space<dim> &space,
+                                  const std::vector<GoalSpec> &goals)
 {
   GoalVectors g;
   Vector<double> j;
@@ -242,8 +248,8 @@ void slab_goal_rhs(const GoalVectors &j, const TimeMesh &mesh, const TemporalBas
     add_kron_vector(1., basis.right_trace(), j.at_end, rhs);
 }
 
-double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh, const TemporalBasis &basis,
-                     const std::vector<Vector<double>> &U)
+double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh,
+                     const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
   double J = 0;
   Vector<double> rhs;
@@ -263,16 +269,19 @@ template <typename F>
 double adaptive(const F &f, double a, double b, double tol, unsigned int depth = 0)
 {
   static const QGauss<1> q(10);
-  auto gauss = [&](double lo, double hi) {
+  auto gauss = [&](double lo, double hi)
+  {
     double s = 0;
     for (unsigned int i = 0; i < q.size(); ++i)
       s += q.weight(i) * f(lo + (hi - lo) * q.point(i)[0]);
     return s * (hi - lo);
   };
-  const double m = 0.5 * (a + b), whole = gauss(a, b), left = gauss(a, m), right = gauss(m, b);
+  const double m = 0.5 * (a + b), whole = gauss(a, b), left = gauss(a, m),
+               right = gauss(m, b);
   if (std::abs(left + right - whole) <= tol || depth > 40)
     return left + right;
-  return adaptive(f, a, m, 0.5 * tol, depth + 1) + adaptive(f, m, b, 0.5 * tol, depth + 1);
+  return adaptive(f, a, m, 0.5 * tol, depth + 1) +
+         adaptive(f, m, b, 0.5 * tol, depth + 1);
 }
 } // namespace
 
@@ -283,7 +292,8 @@ double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol)
   const auto *u = scene.exact();
   if (!u)
     throw InputError("goal '" + goal.name + "': the scene has no exact solution");
-  auto spatial = [&](double t) -> double {
+  auto spatial = [&](double t) -> double
+  {
     if (goal.kind == "point")
     {
       const Point<dim> c = to_point<dim>(goal, goal.center);
@@ -291,25 +301,29 @@ double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol)
         return u->value(c, t);
       const double s = goal.radius, C = mollifier_constant(dim, s);
       return adaptive(
-        [&](double x) {
-          const double h = std::sqrt(std::max(0., s * s - (x - c[0]) * (x - c[0])));
-          return adaptive(
-            [&](double y) {
-              const Point<dim> p(x, y);
-              return mollifier(p, c, s, C) * u->value(p, t);
-            },
-            c[1] - h, c[1] + h, tol * C * s * s);
-        },
-        c[0] - s, c[0] + s, tol);
+          [&](double x)
+          {
+            const double h = std::sqrt(std::max(0., s * s - (x - c[0]) * (x - c[0])));
+            return adaptive(
+                [&](double y)
+                {
+                  const Point<dim> p(x, y);
+                  return mollifier(p, c, s, C) * u->value(p, t);
+                },
+                c[1] - h, c[1] + h, tol * C * s * s);
+          },
+          c[0] - s, c[0] + s, tol);
     }
-    const Point<dim> lo = to_point<dim>(goal, goal.lower), hi = to_point<dim>(goal, goal.upper);
+    const Point<dim> lo = to_point<dim>(goal, goal.lower),
+                     hi = to_point<dim>(goal, goal.upper);
     const double area = (hi[0] - lo[0]) * (hi[1] - lo[1]);
     return adaptive(
-             [&](double x) {
-               return adaptive([&](double y) { return u->value(Point<dim>(x, y), t); }, lo[1],
-                               hi[1], tol * area);
-             },
-             lo[0], hi[0], tol * area) /
+               [&](double x)
+               {
+                 return adaptive([&](double y) { return u->value(Point<dim>(x, y), t); },
+                                 lo[1], hi[1], tol * area);
+               },
+               lo[0], hi[0], tol * area) /
            area;
   };
   if (!goal.over_time)
@@ -324,6 +338,8 @@ double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol)
 
 template double exact_goal<2>(const Scene<2> &, const GoalSpec &, double);
 template class LocalGoal<2>;
-template void assemble_goal_vector<2>(const Space<2> &, const GoalSpec &, Vector<double> &);
-template GoalVectors assemble_goal_vectors<2>(const Space<2> &, const std::vector<GoalSpec> &);
+template void assemble_goal_vector<2>(const Space<2> &, const GoalSpec &,
+                                      Vector<double> &);
+template GoalVectors assemble_goal_vectors<2>(const Space<2> &,
+                                              const std::vector<GoalSpec> &);
 } // namespace anisodwr

@@ -19,15 +19,13 @@ namespace anisodwr
 double mollifier_constant(unsigned int dim, double s);
 
 template <int dim>
-double mollifier(const dealii::Point<dim> &x, const dealii::Point<dim> &c, double s, double C);
-
-
+double mollifier(const dealii::Point<dim> &x, const dealii::Point<dim> &c, double s,
+                 double C);
 
 /// Cell-local goal vectors j_l = sum_g w_g j_g(phi_l) of one part (over time or at T)
 /// of a set of goals, for any element on the triangulation (the estimator evaluates
 /// J'(w) cell by cell with it).
-template <int dim>
-class LocalGoal
+template <int dim> class LocalGoal
 {
 public:
   LocalGoal(const dealii::Mapping<dim> &mapping, const dealii::FiniteElement<dim> &fe,
@@ -57,10 +55,12 @@ struct GoalVectors
 };
 
 template <int dim>
-GoalVectors assemble_goal_vectors(const Space<dim> &space, const std::vector<GoalSpec> &goals);
+GoalVectors assemble_goal_vectors(const Space<dim> &space,
+                                  const std::vector<GoalSpec> &goals);
 
 /// J(u_h) for slab coefficient vectors U (interleaved).
-double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh, const TemporalBasis &basis,
+double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh,
+                     const TemporalBasis &basis,
                      const std::vector<dealii::Vector<double>> &U);
 
 /// J(u) of one goal (weight not applied) for the scene's exact solution u, by adaptive

@@ -8,10 +8,11 @@ namespace anisodwr
 struct GoalSpec
 {
   std::string name;
-  std::string kind = "point"; ///< point (mollified, s = 0: Dirac) or mean (over a rectangle)
-  bool over_time = false;     ///< true: int_I j(u(t)) dt; false: j(u(T))
-  std::vector<double> center; ///< point goals
-  double radius = 0;          ///< mollifier radius s
+  std::string kind =
+      "point";            ///< point (mollified, s = 0: Dirac) or mean (over a rectangle)
+  bool over_time = false; ///< true: int_I j(u(t)) dt; false: j(u(T))
+  std::vector<double> center;       ///< point goals
+  double radius = 0;                ///< mollifier radius s
   std::vector<double> lower, upper; ///< mean goals: the rectangle
   double weight = 1;
 };

@@ -25,7 +25,8 @@ void CsvTable::add_row(const std::vector<double> &values)
 {
   if (values.size() != n_columns)
     throw std::logic_error(file + ": row has " + std::to_string(values.size()) +
-                           " values, table has " + std::to_string(n_columns) + " columns");
+                           " values, table has " + std::to_string(n_columns) +
+                           " columns");
   out << std::setprecision(8);
   for (std::size_t c = 0; c < values.size(); ++c)
   {

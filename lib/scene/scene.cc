@@ -12,22 +12,20 @@ template <int dim>
 const ExactSolution<dim> &require_exact(const ExactSolution<dim> *u, const char *what)
 {
   if (!u)
-    throw std::logic_error(std::string("scene has no exact solution and does not override ") +
-                           what);
+    throw std::logic_error(
+        std::string("scene has no exact solution and does not override ") + what);
   return *u;
 }
 } // namespace
 
-template <int dim>
-double Scene<dim>::rhs(const dealii::Point<dim> &x, double t) const
+template <int dim> double Scene<dim>::rhs(const dealii::Point<dim> &x, double t) const
 {
   const auto &u = require_exact(exact(), "rhs()");
   return u.time_derivative(x, t) - epsilon * u.laplacian(x, t) +
          convection(x, t) * u.gradient(x, t) + reaction(x, t) * u.value(x, t);
 }
 
-template <int dim>
-double Scene<dim>::initial_value(const dealii::Point<dim> &x) const
+template <int dim> double Scene<dim>::initial_value(const dealii::Point<dim> &x) const
 {
   return require_exact(exact(), "initial_value()").value(x, 0.);
 }
@@ -39,14 +37,13 @@ double Scene<dim>::dirichlet_value(const dealii::Point<dim> &x, double t) const
 }
 
 template <int dim>
-double Scene<dim>::neumann_value(const dealii::Point<dim> &x, const dealii::Tensor<1, dim> &n,
-                                 double t) const
+double Scene<dim>::neumann_value(const dealii::Point<dim> &x,
+                                 const dealii::Tensor<1, dim> &n, double t) const
 {
   return epsilon * (require_exact(exact(), "neumann_value()").gradient(x, t) * n);
 }
 
-template <int dim>
-std::vector<GoalSpec> Scene<dim>::default_goals(double radius) const
+template <int dim> std::vector<GoalSpec> Scene<dim>::default_goals(double radius) const
 {
   GoalSpec g;
   g.name = "u_center_T";
@@ -55,8 +52,7 @@ std::vector<GoalSpec> Scene<dim>::default_goals(double radius) const
   return {g};
 }
 
-template <int dim>
-std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm)
+template <int dim> std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm)
 {
   std::unique_ptr<Scene<dim>> scene;
   if (prm.scene == "moving_hump")
@@ -69,7 +65,8 @@ std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm)
     scene = std::make_unique<BoundaryLayer>(prm.epsilon, prm.variant);
   else
     throw InputError("invalid value '" + prm.scene +
-                     "' for key 'scene.name'; expected moving_hump, manufactured, heat or boundary_layer");
+                     "' for key 'scene.name'; expected moving_hump, manufactured, heat "
+                     "or boundary_layer");
   scene->end_time = prm.end_time;
   return scene;
 }

@@ -13,8 +13,7 @@
 
 namespace dealii
 {
-template <int dim, int spacedim>
-class Triangulation;
+template <int dim, int spacedim> class Triangulation;
 }
 
 namespace anisodwr
@@ -22,19 +21,18 @@ namespace anisodwr
 struct Parameters;
 
 /// Exact solution with analytic derivatives (no finite differences).
-template <int dim>
-class ExactSolution
+template <int dim> class ExactSolution
 {
 public:
   virtual ~ExactSolution() = default;
   virtual double value(const dealii::Point<dim> &x, double t) const = 0;
-  virtual dealii::Tensor<1, dim> gradient(const dealii::Point<dim> &x, double t) const = 0;
+  virtual dealii::Tensor<1, dim> gradient(const dealii::Point<dim> &x,
+                                          double t) const = 0;
   virtual double laplacian(const dealii::Point<dim> &x, double t) const = 0;
   virtual double time_derivative(const dealii::Point<dim> &x, double t) const = 0;
 };
 
-template <int dim>
-class Scene
+template <int dim> class Scene
 {
 public:
   virtual ~Scene() = default;
@@ -42,7 +40,8 @@ public:
   virtual std::string name() const = 0;
   virtual void make_coarse_grid(dealii::Triangulation<dim, dim> &tria) const = 0;
 
-  virtual dealii::Tensor<1, dim> convection(const dealii::Point<dim> &x, double t) const = 0;
+  virtual dealii::Tensor<1, dim> convection(const dealii::Point<dim> &x,
+                                            double t) const = 0;
   virtual double reaction(const dealii::Point<dim> &x, double t) const = 0;
   /// True if b or alpha depend on t (the slab matrix is then a sum over
   /// temporal quadrature points and is rebuilt on every slab).
@@ -53,8 +52,8 @@ public:
   virtual double initial_value(const dealii::Point<dim> &x) const;
   virtual double dirichlet_value(const dealii::Point<dim> &x, double t) const;
   /// eps grad u . n on the Neumann boundary.
-  virtual double neumann_value(const dealii::Point<dim> &x, const dealii::Tensor<1, dim> &n,
-                               double t) const;
+  virtual double neumann_value(const dealii::Point<dim> &x,
+                               const dealii::Tensor<1, dim> &n, double t) const;
 
   /// The scene's goal functionals (SCENES.md); `radius` is the mollifier radius of
   /// point goals. Default: the value at the domain's centre (0.5, 0.5) at T.
@@ -73,6 +72,5 @@ protected:
 };
 
 /// Builds the scene named in the parameters; InputError on an unknown name/variant.
-template <int dim>
-std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm);
+template <int dim> std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm);
 } // namespace anisodwr

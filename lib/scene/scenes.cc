@@ -58,12 +58,13 @@ public:
     const double gxx = -2. * y * (1. - y), gyy = -2. * x * (1. - x);
     const double s = s_of(p), q = 1. + A * A * s * s;
     const double sx = -2. * (x - c), sy = -2. * (y - c);
-    // h = 1/2 + atan(A s)/pi: h_i = A s_i / (pi q), h_ii = (A s_ii q - A s_i 2 A^2 s s_i)/(pi q^2)
+    // h = 1/2 + atan(A s)/pi: h_i = A s_i / (pi q), h_ii = (A s_ii q - A s_i 2 A^2 s
+    // s_i)/(pi q^2)
     const double hx = A * sx / (pi * q), hy = A * sy / (pi * q);
     const double hxx = (A * (-2.) * q - A * sx * 2. * A * A * s * sx) / (pi * q * q);
     const double hyy = (A * (-2.) * q - A * sy * 2. * A * A * s * sy) / (pi * q * q);
-    const double lap = gxx * h(p) + 2. * gx * hx + g(p) * hxx + gyy * h(p) + 2. * gy * hy +
-                       g(p) * hyy;
+    const double lap =
+        gxx * h(p) + 2. * gx * hx + g(p) * hxx + gyy * h(p) + 2. * gy * hy + g(p) * hyy;
     return 16. * std::sin(pi * t) * lap;
   }
 
@@ -105,7 +106,7 @@ public:
   {
     const double x = p[0], E = std::exp((x - 1.) / eps);
     return dealii::Tensor<1, 2>(
-      {(1. - E - x * E / eps) * (1. + 0.5 * p[1]) * (1. + t), 0.5 * X(x) * (1. + t)});
+        {(1. - E - x * E / eps) * (1. + 0.5 * p[1]) * (1. + t), 0.5 * X(x) * (1. + t)});
   }
   double laplacian(const dealii::Point<2> &p, double t) const override
   {
@@ -118,19 +119,58 @@ private:
   double X(double x) const { return x * (1. - std::exp((x - 1.) / eps)); }
 };
 
-double sin_pi(double x) { return std::sin(pi * x); }
-double dsin_pi(double x) { return pi * std::cos(pi * x); }
-double ddsin_pi(double x) { return -pi * pi * std::sin(pi * x); }
-double bubble(double x) { return 4. * x * (1. - x); }
-double dbubble(double x) { return 4. - 8. * x; }
-double ddbubble(double) { return -8.; }
-double quad_neg(double x) { return x * x - x; } // (x^2 - x)
-double dquad_neg(double x) { return 2. * x - 1.; }
-double ddquad_neg(double) { return 2.; }
-double decay(double t) { return std::exp(-t) * (1. + t * t); }
-double ddecay(double t) { return std::exp(-t) * (-1. + 2. * t - t * t); }
-double heat_poly_t(double t) { return -t / 4.; }
-double heat_poly_dt(double) { return -0.25; }
+double sin_pi(double x)
+{
+  return std::sin(pi * x);
+}
+double dsin_pi(double x)
+{
+  return pi * std::cos(pi * x);
+}
+double ddsin_pi(double x)
+{
+  return -pi * pi * std::sin(pi * x);
+}
+double bubble(double x)
+{
+  return 4. * x * (1. - x);
+}
+double dbubble(double x)
+{
+  return 4. - 8. * x;
+}
+double ddbubble(double)
+{
+  return -8.;
+}
+double quad_neg(double x)
+{
+  return x * x - x;
+} // (x^2 - x)
+double dquad_neg(double x)
+{
+  return 2. * x - 1.;
+}
+double ddquad_neg(double)
+{
+  return 2.;
+}
+double decay(double t)
+{
+  return std::exp(-t) * (1. + t * t);
+}
+double ddecay(double t)
+{
+  return std::exp(-t) * (-1. + 2. * t - t * t);
+}
+double heat_poly_t(double t)
+{
+  return -t / 4.;
+}
+double heat_poly_dt(double)
+{
+  return -0.25;
+}
 
 void unit_square(dealii::Triangulation<2, 2> &tria)
 {
@@ -142,7 +182,8 @@ double SeparableSolution::value(const dealii::Point<2> &p, double t) const
 {
   return X.f(p[0]) * Y.f(p[1]) * T(t);
 }
-dealii::Tensor<1, 2> SeparableSolution::gradient(const dealii::Point<2> &p, double t) const
+dealii::Tensor<1, 2> SeparableSolution::gradient(const dealii::Point<2> &p,
+                                                 double t) const
 {
   dealii::Tensor<1, 2> g;
   g[0] = X.df(p[0]) * Y.f(p[1]) * T(t);
@@ -164,7 +205,10 @@ MovingHump::MovingHump(double eps, const std::string &variant)
   epsilon = eps;
   exact_solution = std::make_unique<HumpSolution>(eps);
 }
-void MovingHump::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const { unit_square(tria); }
+void MovingHump::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const
+{
+  unit_square(tria);
+}
 dealii::Tensor<1, 2> MovingHump::convection(const dealii::Point<2> &, double) const
 {
   return dealii::Tensor<1, 2>({2., 3.});
@@ -209,7 +253,8 @@ Manufactured::Manufactured(double eps, const std::string &variant)
   require_variant("manufactured", variant, {"", "constant", "rotating", "poly_space"});
   epsilon = eps;
   rotating = (variant == "rotating" || variant == "poly_space");
-  const SeparableSolution::Factor s{sin_pi, dsin_pi, ddsin_pi}, b{bubble, dbubble, ddbubble};
+  const SeparableSolution::Factor s{sin_pi, dsin_pi, ddsin_pi},
+      b{bubble, dbubble, ddbubble};
   if (variant == "poly_space")
     exact_solution = std::make_unique<SeparableSolution>(b, b, decay, ddecay);
   else
@@ -245,5 +290,8 @@ Heat::Heat(double eps, const std::string &variant)
     exact_solution = std::make_unique<SeparableSolution>(q, q, heat_poly_t, heat_poly_dt);
   }
 }
-void Heat::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const { unit_square(tria); }
+void Heat::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const
+{
+  unit_square(tria);
+}
 } // namespace anisodwr

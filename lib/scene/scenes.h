@@ -4,7 +4,8 @@
 
 namespace anisodwr
 {
-/// Hump with a circular interior layer (John, Maubach & Tobiska 1997), b = (2,3), alpha = 1.
+/// Hump with a circular interior layer (John, Maubach & Tobiska 1997), b = (2,3), alpha
+/// = 1.
 class MovingHump : public Scene<2>
 {
 public:
@@ -21,7 +22,8 @@ public:
 /// Exponential outflow layer at x = 1 (aligned with the y axis), for anisotropy:
 ///   u = x (1 - e^{(x-1)/eps}) (1 + y/2) (1 + t),  b = (1, 0), alpha = 1,
 /// Dirichlet data from u on x = 0, 1, Neumann data eps du/dn on y = 0, 1 (so that the
-/// adjoint has no wall layers either); u is linear in y, so the error sits in the layer. Goal: mean of u(T) over (0.5,1) x (0,1).
+/// adjoint has no wall layers either); u is linear in y, so the error sits in the layer.
+/// Goal: mean of u(T) over (0.5,1) x (0,1).
 class BoundaryLayer : public Scene<2>
 {
 public:

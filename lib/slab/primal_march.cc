@@ -26,9 +26,9 @@ void assemble_slab_load(const Space<dim> &space, const TemporalBasis &basis, dou
   }
 }
 
-void guarded_slab_solve(const MarchOptions &options, const std::string &kind, unsigned int n,
-                        const TimeMesh &mesh, const std::function<void()> &solve,
-                        const Vector<double> &result)
+void guarded_slab_solve(const MarchOptions &options, const std::string &kind,
+                        unsigned int n, const TimeMesh &mesh,
+                        const std::function<void()> &solve, const Vector<double> &result)
 {
   std::ostringstream name;
   name << options.label << ", " << kind << " slab " << n + 1 << "/" << mesh.n_slabs()
@@ -52,9 +52,9 @@ void guarded_slab_solve(const MarchOptions &options, const std::string &kind, un
 }
 
 template <int dim>
-std::vector<Vector<double>> march_primal(const Space<dim> &space, const TimeMesh &mesh,
-                                         const TemporalBasis &basis, SlabOperator<dim> &op,
-                                         const MarchOptions &options)
+std::vector<Vector<double>>
+march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,
+             SlabOperator<dim> &op, const MarchOptions &options)
 {
   std::vector<Vector<double>> U(mesh.n_slabs());
   Vector<double> coupling, last, load;
@@ -63,26 +63,28 @@ std::vector<Vector<double>> march_primal(const Space<dim> &space, const TimeMesh
   {
     const double t0 = mesh.start(n), tau = mesh.tau(n);
     guarded_slab_solve(
-      options, "primal", n, mesh,
-      [&]() {
-        op.prepare(t0, tau);
-        if (n > 0)
+        options, "primal", n, mesh,
+        [&]()
         {
-          combine_blocks(U[n - 1], basis.right_trace(), last); // u(t_{n-1}^-)
-          op.jump_mass().vmult(coupling, last);
-        }
-        assemble_slab_load(space, basis, t0, tau, load);
-        add_kron_vector(1., basis.left_trace(), coupling, load);
-        op.solve(load, U[n]);
-      },
-      U[n]);
+          op.prepare(t0, tau);
+          if (n > 0)
+          {
+            combine_blocks(U[n - 1], basis.right_trace(), last); // u(t_{n-1}^-)
+            op.jump_mass().vmult(coupling, last);
+          }
+          assemble_slab_load(space, basis, t0, tau, load);
+          add_kron_vector(1., basis.left_trace(), coupling, load);
+          op.solve(load, U[n]);
+        },
+        U[n]);
   }
   return U;
 }
 
 template std::vector<Vector<double>> march_primal<2>(const Space<2> &, const TimeMesh &,
-                                                     const TemporalBasis &, SlabOperator<2> &,
+                                                     const TemporalBasis &,
+                                                     SlabOperator<2> &,
                                                      const MarchOptions &);
-template void assemble_slab_load<2>(const Space<2> &, const TemporalBasis &, double, double,
-                                    Vector<double> &);
+template void assemble_slab_load<2>(const Space<2> &, const TemporalBasis &, double,
+                                    double, Vector<double> &);
 } // namespace anisodwr

@@ -19,17 +19,17 @@ struct MarchOptions
 /// Runs `solve` for slab n (0-based) of `mesh`; any exception becomes a NumericalError
 /// naming options.label, `kind` (primal/adjoint), the slab and its time interval, and
 /// so does a non-finite `result` afterwards. Prints a progress line if asked.
-void guarded_slab_solve(const MarchOptions &options, const std::string &kind, unsigned int n,
-                        const TimeMesh &mesh, const std::function<void()> &solve,
+void guarded_slab_solve(const MarchOptions &options, const std::string &kind,
+                        unsigned int n, const TimeMesh &mesh,
+                        const std::function<void()> &solve,
                         const dealii::Vector<double> &result);
 
 /// Returns one interleaved coefficient vector per slab. Throws NumericalError naming
 /// the label and slab on solver failure or non-finite values.
 template <int dim>
-std::vector<dealii::Vector<double>> march_primal(const Space<dim> &space, const TimeMesh &mesh,
-                                                 const TemporalBasis &basis,
-                                                 SlabOperator<dim> &op,
-                                                 const MarchOptions &options);
+std::vector<dealii::Vector<double>>
+march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,
+             SlabOperator<dim> &op, const MarchOptions &options);
 
 /// Slab load F_n: int_{I_n} l_k (F(t)) dt by (r+2)-point Gauss quadrature, F(t) the
 /// spatial load vector of Space::assemble_load.

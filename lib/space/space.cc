@@ -13,24 +13,22 @@ namespace anisodwr
 {
 using namespace dealii;
 
-
 template <int dim>
-Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria, unsigned int degree,
-                  double delta0, bool streamline_length)
-    : scene(scene), delta0(delta0), streamline_length(streamline_length), fe(degree), map(1),
-      dofs(tria)
+Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria,
+                  unsigned int degree, double delta0, bool streamline_length)
+    : scene(scene), delta0(delta0), streamline_length(streamline_length), fe(degree),
+      map(1), dofs(tria)
 {
 }
 
-template <int dim>
-void Space<dim>::setup()
+template <int dim> void Space<dim>::setup()
 {
   dofs.distribute_dofs(fe);
   homogeneous.clear();
   DoFTools::make_hanging_node_constraints(dofs, homogeneous);
   for (const auto id : scene.dirichlet_ids)
-    VectorTools::interpolate_boundary_values(map, dofs, id, Functions::ZeroFunction<dim>(),
-                                             homogeneous);
+    VectorTools::interpolate_boundary_values(map, dofs, id,
+                                             Functions::ZeroFunction<dim>(), homogeneous);
   homogeneous.close();
   DynamicSparsityPattern dsp(dofs.n_dofs());
   // keep_constrained_dofs = true: the unconstrained M, A live on the same pattern.
@@ -43,8 +41,8 @@ void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> 
 {
   c.clear();
   DoFTools::make_hanging_node_constraints(dofs, c);
-  const ScalarFunctionFromFunctionObject<dim> g(
-    [&](const Point<dim> &x) { return scene.dirichlet_value(x, t); });
+  const ScalarFunctionFromFunctionObject<dim> g([&](const Point<dim> &x)
+                                                { return scene.dirichlet_value(x, t); });
   for (const auto id : scene.dirichlet_ids)
     VectorTools::interpolate_boundary_values(map, dofs, id, g, c);
   c.close();
@@ -86,15 +84,14 @@ double Space<dim>::delta(const typename Triangulation<dim>::cell_iterator &cell)
   return delta0 * std::pow(cell->measure(), 1.0 / dim);
 }
 
-template <int dim>
-void Space<dim>::assemble_matrices(double t, SpatialMatrices &m) const
+template <int dim> void Space<dim>::assemble_matrices(double t, SpatialMatrices &m) const
 {
   for (auto *mat : {&m.M, &m.A, &m.Mc, &m.Ac})
     mat->reinit(pattern);
   const QGauss<dim> quad(fe.degree + 2);
   FEValues<dim> fv(map, fe, quad,
                    update_values | update_gradients | update_hessians |
-                     update_quadrature_points | update_JxW_values);
+                       update_quadrature_points | update_JxW_values);
   const unsigned int n = fe.n_dofs_per_cell();
   FullMatrix<double> cm(n, n), ca(n, n);
   std::vector<types::global_dof_index> idx(n);
@@ -122,7 +119,8 @@ void Space<dim>::assemble_matrices(double t, SpatialMatrices &m) const
           const double conv_react_j = b * grad_j + alpha * phi_j;
           const double strong_j = -eps * trace(fv.shape_hessian(j, q)) + conv_react_j;
           cm(i, j) += phi_j * (phi_i + supg_i) * JxW;
-          ca(i, j) += (eps * (grad_j * grad_i) + conv_react_j * phi_i + strong_j * supg_i) * JxW;
+          ca(i, j) +=
+              (eps * (grad_j * grad_i) + conv_react_j * phi_i + strong_j * supg_i) * JxW;
         }
       }
     }
@@ -138,18 +136,17 @@ void Space<dim>::assemble_matrices(double t, SpatialMatrices &m) const
   }
 }
 
-template <int dim>
-void Space<dim>::assemble_load(double t, Vector<double> &F) const
+template <int dim> void Space<dim>::assemble_load(double t, Vector<double> &F) const
 {
   F.reinit(dofs.n_dofs());
   const QGauss<dim> quad(fe.degree + 2);
   const QGauss<dim - 1> fquad(fe.degree + 2);
   FEValues<dim> fv(map, fe, quad,
                    update_values | update_gradients | update_quadrature_points |
-                     update_JxW_values);
+                       update_JxW_values);
   FEFaceValues<dim> ffv(map, fe, fquad,
                         update_values | update_quadrature_points | update_normal_vectors |
-                          update_JxW_values);
+                            update_JxW_values);
   const unsigned int n = fe.n_dofs_per_cell();
   Vector<double> cf(n);
   std::vector<types::global_dof_index> idx(n);
@@ -168,13 +165,15 @@ void Space<dim>::assemble_load(double t, Vector<double> &F) const
     }
     if (!scene.neumann_ids.empty())
       for (const auto face : cell->face_indices())
-        if (cell->at_boundary(face) && scene.neumann_ids.count(cell->face(face)->boundary_id()))
+        if (cell->at_boundary(face) &&
+            scene.neumann_ids.count(cell->face(face)->boundary_id()))
         {
           ffv.reinit(cell, face);
           for (unsigned int q = 0; q < fquad.size(); ++q)
           {
             const double g =
-              scene.neumann_value(ffv.quadrature_point(q), ffv.normal_vector(q), t) * ffv.JxW(q);
+                scene.neumann_value(ffv.quadrature_point(q), ffv.normal_vector(q), t) *
+                ffv.JxW(q);
             for (unsigned int i = 0; i < n; ++i)
               cf(i) += g * ffv.shape_value(i, q);
           }
@@ -185,14 +184,13 @@ void Space<dim>::assemble_load(double t, Vector<double> &F) const
   }
 }
 
-template <int dim>
-void Space<dim>::assemble_initial(Vector<double> &U0) const
+template <int dim> void Space<dim>::assemble_initial(Vector<double> &U0) const
 {
   U0.reinit(dofs.n_dofs());
   const QGauss<dim> quad(fe.degree + 2);
   FEValues<dim> fv(map, fe, quad,
                    update_values | update_gradients | update_quadrature_points |
-                     update_JxW_values);
+                       update_JxW_values);
   const unsigned int n = fe.n_dofs_per_cell();
   std::vector<types::global_dof_index> idx(n);
   for (const auto &cell : dofs.active_cell_iterators())
@@ -211,15 +209,14 @@ void Space<dim>::assemble_initial(Vector<double> &U0) const
   }
 }
 
-template <int dim>
-double Space<dim>::l2_error(const Vector<double> &uh, double t) const
+template <int dim> double Space<dim>::l2_error(const Vector<double> &uh, double t) const
 {
   const ExactSolution<dim> &exact = *scene.exact();
-  const ScalarFunctionFromFunctionObject<dim> u(
-    [&](const Point<dim> &x) { return exact.value(x, t); });
+  const ScalarFunctionFromFunctionObject<dim> u([&](const Point<dim> &x)
+                                                { return exact.value(x, t); });
   Vector<float> cellwise(dofs.get_triangulation().n_active_cells());
-  VectorTools::integrate_difference(map, dofs, uh, u, cellwise, QGauss<dim>(fe.degree + 3),
-                                    VectorTools::L2_norm);
+  VectorTools::integrate_difference(map, dofs, uh, u, cellwise,
+                                    QGauss<dim>(fe.degree + 3), VectorTools::L2_norm);
   return VectorTools::compute_global_error(dofs.get_triangulation(), cellwise,
                                            VectorTools::L2_norm);
 }

@@ -22,16 +22,16 @@ struct SpatialMatrices
   dealii::SparseMatrix<double> M, A, Mc, Ac;
 };
 
-template <int dim>
-class Space
+template <int dim> class Space
 {
 public:
   /// SUPG: delta_K = delta0 h_K with h_K = |K|^{1/dim} (SPEC §2), or, if
   /// `streamline_length`, h_K = the length of K along b (for anisotropic cells).
-  Space(const Scene<dim> &scene, const dealii::Triangulation<dim> &tria, unsigned int degree,
-        double delta0, bool streamline_length = false);
+  Space(const Scene<dim> &scene, const dealii::Triangulation<dim> &tria,
+        unsigned int degree, double delta0, bool streamline_length = false);
 
-  /// Distributes DoFs, builds constraints and the sparsity pattern (call after refinement).
+  /// Distributes DoFs, builds constraints and the sparsity pattern (call after
+  /// refinement).
   void setup();
 
   unsigned int degree() const { return fe.degree; }

@@ -64,7 +64,10 @@ std::vector<double> numbers(const std::string &s, const std::string &key, unsign
   return v;
 }
 
-std::string num(double v) { return json_number(v, 12); }
+std::string num(double v)
+{
+  return json_number(v, 12);
+}
 
 struct LoopRow
 {
@@ -79,16 +82,31 @@ struct LoopRow
   double I_eff() const { return std::abs((eta_h_total + eta_tau) / (J_exact - J)); }
   std::vector<double> values() const
   {
-    return {double(loop), n_space, double(n_t), n_tot, J, J_error(), eta_h[0], eta_h[1],
-            eta_h_total, eta_tau, eta_h_total + eta_tau, I_eff(), ar, t_primal, t_adjoint,
-            t_estimate, t_refine, mem};
+    return {double(loop),
+            n_space,
+            double(n_t),
+            n_tot,
+            J,
+            J_error(),
+            eta_h[0],
+            eta_h[1],
+            eta_h_total,
+            eta_tau,
+            eta_h_total + eta_tau,
+            I_eff(),
+            ar,
+            t_primal,
+            t_adjoint,
+            t_estimate,
+            t_refine,
+            mem};
   }
 };
 
 const std::vector<std::string> columns{
-  "loop",     "N_space", "N_t",      "N_tot",    "J",        "J_error",
-  "eta_hx",   "eta_hy",  "eta_h",    "eta_tau",  "eta_tauh", "I_eff",
-  "ar_max",   "t_primal", "t_adjoint", "t_estimate", "t_refine", "mem_peak"};
+    "loop",   "N_space",  "N_t",       "N_tot",      "J",        "J_error",
+    "eta_hx", "eta_hy",   "eta_h",     "eta_tau",    "eta_tauh", "I_eff",
+    "ar_max", "t_primal", "t_adjoint", "t_estimate", "t_refine", "mem_peak"};
 
 void write_latex(const std::string &path, const std::vector<LoopRow> &rows)
 {
@@ -96,9 +114,11 @@ void write_latex(const std::string &path, const std::vector<LoopRow> &rows)
   f << "% written by anisodwr; one row per DWR loop\n"
     << "\\begin{tabular}{rrrrcccccccr}\n\\hline\n"
     << "$\\ell$ & $N_{\\mathrm{space}}$ & $N_t$ & $N_{\\mathrm{tot}}$ & "
-    << "$|J(u)-J(u_{\\tau h})|$ & $\\eta_{h,x}$ & $\\eta_{h,y}$ & $\\eta_h$ & $\\eta_\\tau$ & "
+    << "$|J(u)-J(u_{\\tau h})|$ & $\\eta_{h,x}$ & $\\eta_{h,y}$ & $\\eta_h$ & "
+       "$\\eta_\\tau$ & "
     << "$\\eta_{\\tau h}$ & $I_{\\mathrm{eff}}$ & $\\mathrm{ar}_{\\max}$ \\\\\n\\hline\n";
-  auto sci = [](double v) {
+  auto sci = [](double v)
+  {
     if (!std::isfinite(v))
       return std::string("--");
     std::ostringstream s;
@@ -112,8 +132,8 @@ void write_latex(const std::string &path, const std::vector<LoopRow> &rows)
     ar << std::fixed << std::setprecision(1) << r.ar;
     f << r.loop << " & " << std::size_t(r.n_space) << " & " << r.n_t << " & "
       << std::size_t(r.n_tot) << " & " << sci(r.J_error()) << " & " << sci(r.eta_h[0])
-      << " & " << sci(r.eta_h[1]) << " & " << sci(r.eta_h_total) << " & " << sci(r.eta_tau)
-      << " & " << sci(r.eta_h_total + r.eta_tau) << " & "
+      << " & " << sci(r.eta_h[1]) << " & " << sci(r.eta_h_total) << " & "
+      << sci(r.eta_tau) << " & " << sci(r.eta_h_total + r.eta_tau) << " & "
       << (std::isfinite(r.I_eff()) ? ie.str() : "--") << " & " << ar.str() << " \\\\\n";
   }
   f << "\\hline\n\\end{tabular}\n";
@@ -138,20 +158,22 @@ void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
       f << (c ? ", " : "") << "\"" << columns[c] << "\": " << num(v[c]);
     f << ", \"goals\": {";
     for (std::size_t g = 0; g < goals.size(); ++g)
-      f << (g ? ", " : "") << "\"" << goals[g].name << "\": {\"J_h\": " << num(r.J_goal[g])
-        << ", \"J_exact\": " << num(r.J_goal_exact[g]) << ", \"weight\": " << num(r.weights[g])
-        << "}";
+      f << (g ? ", " : "") << "\"" << goals[g].name
+        << "\": {\"J_h\": " << num(r.J_goal[g])
+        << ", \"J_exact\": " << num(r.J_goal_exact[g])
+        << ", \"weight\": " << num(r.weights[g]) << "}";
     f << "}}";
   }
-  f << "\n  ],\n  \"wall_time\": " << num(wall) << ",\n  \"peak_memory_mb\": "
-    << num(peak_memory_mb()) << "\n}\n";
+  f << "\n  ],\n  \"wall_time\": " << num(wall)
+    << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << "\n}\n";
 }
 
 /// J_i(u~) with u~ the patch lift I_2h u_h (the reconstruction behind `auto` weights).
 double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh &mesh,
                    const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
-  const SpatialOperators<2> ops(primal.dof_handler(), primal.mapping(), 2 * primal.degree());
+  const SpatialOperators<2> ops(primal.dof_handler(), primal.mapping(),
+                                2 * primal.degree());
   GoalSpec g = goal;
   g.weight = 1;
   const LocalGoal<2> local(primal.mapping(), ops.weight_element(),
@@ -175,7 +197,8 @@ double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh 
       lift.dofs = idx;
       lift.matrix = P;
     }
-    auto node_value = [&](unsigned int n, unsigned int k) {
+    auto node_value = [&](unsigned int n, unsigned int k)
+    {
       lift.apply(U[n], v, m1, k);
       return j * v;
     };
@@ -231,9 +254,10 @@ std::vector<GoalSpec> make_goals(const Parameters &prm, const Scene<2> &scene)
         g.lower = {v[0], v[1]};
         g.upper = {v[2], v[3]};
         if (!(v[2] > v[0] && v[3] > v[1]))
-          throw InputError("invalid rectangle '" + items[i] +
-                           "' in key 'goal.locations'; expected x0,y0,x1,y1 with x1 > x0, "
-                           "y1 > y0");
+          throw InputError(
+              "invalid rectangle '" + items[i] +
+              "' in key 'goal.locations'; expected x0,y0,x1,y1 with x1 > x0, "
+              "y1 > y0");
       }
       goals.push_back(g);
     }
@@ -242,8 +266,10 @@ std::vector<GoalSpec> make_goals(const Parameters &prm, const Scene<2> &scene)
   {
     const auto w = split(prm.goal_weights, ',');
     if (w.size() != 1 && w.size() != goals.size())
-      throw InputError("invalid value '" + prm.goal_weights + "' for key 'goal.weights'; "
-                       "expected auto, one number or " + std::to_string(goals.size()) +
+      throw InputError("invalid value '" + prm.goal_weights +
+                       "' for key 'goal.weights'; "
+                       "expected auto, one number or " +
+                       std::to_string(goals.size()) +
                        " comma-separated numbers (one per goal)");
     const auto v = numbers(prm.goal_weights, "goal.weights", w.size());
     for (std::size_t g = 0; g < goals.size(); ++g)
@@ -281,16 +307,17 @@ void run_dwr(const Parameters &prm)
   std::vector<std::pair<double, std::string>> vtu_records;
   std::string stop_reason = "max loops";
   Timer wall;
-  std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.p << ")-dG(" << prm.r
-            << "), adjoint cG(" << q << "), " << prm.adaptivity_mode << ", goals:";
+  std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.p << ")-dG("
+            << prm.r << "), adjoint cG(" << q << "), " << prm.adaptivity_mode
+            << ", goals:";
   for (std::size_t g = 0; g < goals.size(); ++g)
     std::cout << " " << goals[g].name << (has_exact ? " = " + num(J_exact[g]) : "");
   std::cout << "\n";
-  std::cout << std::setw(4) << "loop" << std::setw(9) << "N_space" << std::setw(6) << "N_t"
-            << std::setw(10) << "N_tot" << std::setw(12) << "J_error" << std::setw(11)
-            << "eta_hx" << std::setw(11) << "eta_hy" << std::setw(11) << "eta_tau"
-            << std::setw(7) << "I_eff" << std::setw(9) << "ar" << std::setw(8) << "t[s]"
-            << std::endl;
+  std::cout << std::setw(4) << "loop" << std::setw(9) << "N_space" << std::setw(6)
+            << "N_t" << std::setw(10) << "N_tot" << std::setw(12) << "J_error"
+            << std::setw(11) << "eta_hx" << std::setw(11) << "eta_hy" << std::setw(11)
+            << "eta_tau" << std::setw(7) << "I_eff" << std::setw(9) << "ar"
+            << std::setw(8) << "t[s]" << std::endl;
   try
   {
     for (unsigned int loop = 1; loop <= prm.loops; ++loop)
@@ -306,8 +333,9 @@ void run_dwr(const Parameters &prm)
         row.n_tot = row.n_space * row.n_t * basis.n_dofs();
         if (prm.max_dofs > 0 && row.n_tot > prm.max_dofs)
         {
-          stop_reason = "DoF budget: loop " + std::to_string(loop) + " would have N_tot = " +
-                        std::to_string(std::size_t(row.n_tot)) + " > adaptivity.max_dofs";
+          stop_reason = "DoF budget: loop " + std::to_string(loop) +
+                        " would have N_tot = " + std::to_string(std::size_t(row.n_tot)) +
+                        " > adaptivity.max_dofs";
           break;
         }
         MarchOptions opt;
@@ -324,8 +352,10 @@ void run_dwr(const Parameters &prm)
           row.J_goal_exact.push_back(J_exact[g]);
           if (auto_weights)
           {
-            const double d = lifted_goal(primal, goals[g], mesh, basis, U) - row.J_goal[g];
-            goals[g].weight = (d >= 0 ? 1. : -1.) / std::max(std::abs(row.J_goal[g]), 1e-12);
+            const double d =
+                lifted_goal(primal, goals[g], mesh, basis, U) - row.J_goal[g];
+            goals[g].weight =
+                (d >= 0 ? 1. : -1.) / std::max(std::abs(row.J_goal[g]), 1e-12);
           }
           row.weights.push_back(goals[g].weight);
           row.J += goals[g].weight * row.J_goal[g];
@@ -337,8 +367,8 @@ void run_dwr(const Parameters &prm)
         Space<2> adjoint(*scene, tria, q, prm.delta0, prm.supg_length == "streamline");
         adjoint.setup();
         SlabOperator<2> opq(adjoint, basis, prm.reuse_factorization);
-        const auto Z =
-          march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, goals), opt);
+        const auto Z = march_adjoint(adjoint, mesh, basis, opq,
+                                     assemble_goal_vectors(adjoint, goals), opt);
         row.t_adjoint = t.wall_time();
 
         t.restart();
@@ -356,7 +386,7 @@ void run_dwr(const Parameters &prm)
         if (prm.vtu_loops > 0 && (loop % prm.vtu_loops == 0 || loop == prm.loops))
         {
           Vector<double> uT, ex(ar_cell.size()), ey(ar_cell.size()), et(ar_cell.size()),
-            ar(ar_cell.begin(), ar_cell.end());
+              ar(ar_cell.begin(), ar_cell.end());
           for (unsigned int c = 0; c < ar_cell.size(); ++c)
           {
             ex[c] = ind.eta_h_cell[c][0];
@@ -377,7 +407,8 @@ void run_dwr(const Parameters &prm)
       bool stop = false;
       if (loop == prm.loops)
         stop = true;
-      else if (prm.tolerance > 0 && std::abs(row.eta_h_total + row.eta_tau) < prm.tolerance)
+      else if (prm.tolerance > 0 &&
+               std::abs(row.eta_h_total + row.eta_tau) < prm.tolerance)
       {
         stop = true;
         stop_reason = "tolerance";
@@ -407,7 +438,8 @@ void run_dwr(const Parameters &prm)
                 << row.eta_tau << std::setw(7) << std::setprecision(3) << row.I_eff()
                 << std::setw(9) << std::setprecision(4) << row.ar << std::setw(8)
                 << std::setprecision(3)
-                << row.t_primal + row.t_adjoint + row.t_estimate + row.t_refine << std::endl;
+                << row.t_primal + row.t_adjoint + row.t_estimate + row.t_refine
+                << std::endl;
       if (stop)
         break;
     }
