@@ -5,6 +5,9 @@
 #include "study/study.h"
 
 #include <iostream>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <string>
 #include <vector>
 
@@ -25,6 +28,13 @@ solution.pvd + solution-NNNN.vtu (study.mode = single).
 
 int main(int argc, char **argv)
 {
+#ifdef __GLIBC__
+  // The estimator's inner loop allocates many small aligned deal.II vectors; with
+  // glibc's fastbins every aligned allocation triggers malloc_consolidate, which
+  // took half of the estimator's time (perf). Without fastbins the estimator runs
+  // 1.7x faster (moving_hump_paper loop 10: 6.3 s -> 3.7 s).
+  mallopt(M_MXFAST, 0);
+#endif
   using namespace anisodwr;
   const std::vector<std::string> args(argv + 1, argv + argc);
   try

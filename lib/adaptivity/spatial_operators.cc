@@ -11,6 +11,31 @@ namespace anisodwr
 {
 using namespace dealii;
 
+namespace
+{
+/// The affine map of a cell through vertices 0, 1, 2(, 4): exact for parallelograms,
+/// which is what the lifts assume; much cheaper than Mapping's Newton inversion.
+template <int dim>
+struct AffineCell
+{
+  Point<dim> origin;
+  Tensor<2, dim> J, J_inv;
+  template <typename Cell>
+  explicit AffineCell(const Cell &cell) : origin(cell->vertex(0))
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      const Tensor<1, dim> edge = cell->vertex(1u << d) - origin;
+      for (unsigned int e = 0; e < dim; ++e)
+        J[e][d] = edge[e];
+    }
+    J_inv = invert(J);
+  }
+  Point<dim> to_real(const Point<dim> &xi) const { return origin + J * xi; }
+  Point<dim> to_unit(const Point<dim> &x) const { return Point<dim>(J_inv * (x - origin)); }
+};
+} // namespace
+
 void LocalMap::apply(const Vector<double> &global, Vector<double> &local,
                      unsigned int stride, unsigned int offset) const
 {
@@ -88,9 +113,10 @@ std::pair<double, double> SpatialOperators<dim>::extent(const cell_iterator &K,
                                                         unsigned int direction) const
 {
   double lo = 1e300, hi = -1e300;
+  const AffineCell<dim> k(K);
   for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
   {
-    const double x = mapping.transform_real_to_unit_cell(K, other->vertex(v))[direction];
+    const double x = k.to_unit(other->vertex(v))[direction];
     lo = std::min(lo, x);
     hi = std::max(hi, x);
   }
@@ -152,9 +178,10 @@ LocalMap SpatialOperators<dim>::patch_lift(const cell_iterator &K) const
     if (parent->refinement_case() & RefinementCase<dim>::cut_axis(i))
     {
       double lo = 1e300, hi = -1e300;
+      const AffineCell<dim> k(K);
       for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
       {
-        const double x = mapping.transform_real_to_unit_cell(K, parent->vertex(v))[i];
+        const double x = k.to_unit(parent->vertex(v))[i];
         lo = std::min(lo, x);
         hi = std::max(hi, x);
       }
@@ -164,7 +191,7 @@ LocalMap SpatialOperators<dim>::patch_lift(const cell_iterator &K) const
 }
 
 template <int dim>
-LocalMap SpatialOperators<dim>::build(const cell_iterator &K,
+LocalMap SpatialOperators<dim>::build(const cell_iterator & /*K = candidates[0]*/,
                                       const std::vector<std::vector<double>> &nodes,
                                       const std::vector<cell_iterator> &candidates) const
 {
@@ -187,6 +214,9 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator &K,
   for (unsigned int d = 0; d < dim; ++d)
     n_grid *= (n[d] = nodes[d].size());
   const auto &wpts = fe_w.get_unit_support_points();
+  std::vector<AffineCell<dim>> affine;
+  for (const auto &c : candidates)
+    affine.emplace_back(c);
   const double tol = 1e-8;
   auto inside = [&](const Point<dim> &x)
   {
@@ -214,17 +244,13 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator &K,
     }
     else
     {
-      const Point<dim> x = mapping.transform_unit_to_real_cell(K, xi);
+      const Point<dim> x = affine[0].to_real(xi);
       for (unsigned int c = 1; c < candidates.size() && c_found == candidates.size(); ++c)
-        try
-        {
-          xc = mapping.transform_real_to_unit_cell(candidates[c], x);
-          if (inside(xc))
-            c_found = c;
-        }
-        catch (const typename Mapping<dim>::ExcTransformationFailed &)
-        {
-        }
+      {
+        xc = affine[c].to_unit(x);
+        if (inside(xc))
+          c_found = c;
+      }
     }
     if (c_found == candidates.size())
       return LocalMap();

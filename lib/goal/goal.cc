@@ -9,6 +9,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 
 namespace anisodwr
@@ -62,7 +63,37 @@ template <int dim> struct LocalGoal<dim>::Part
   bool dirac = false;
   typename Triangulation<dim>::active_cell_iterator dirac_cell;
   Point<dim> dirac_unit;
-  std::unique_ptr<Quadrature<dim>> quad;
+  /// FEValues on iterated Gauss rules, one per number of sub-cells (built on demand)
+  mutable std::map<unsigned int, std::unique_ptr<FEValues<dim>>> values;
+
+  /// Sub-cells per direction on `cell`: at most s/16 wide for mollifiers (at most 64
+  /// per direction), 8 for a cell cut by a rectangle's edge, 1 inside it.
+  unsigned int sub_cells(const typename Triangulation<dim>::active_cell_iterator &cell) const
+  {
+    if (goal.kind == "point")
+    {
+      const double n = std::ceil(16. * cell->diameter() / goal.radius);
+      unsigned int k = 1;
+      while (k < n && k < 64)
+        k *= 2;
+      return k;
+    }
+    for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (cell->vertex(v)[d] < lo[d] || cell->vertex(v)[d] > hi[d])
+          return 8;
+    return 1;
+  }
+  FEValues<dim> &fe_values(unsigned int n, const Mapping<dim> &mapping,
+                           const FiniteElement<dim> &fe) const
+  {
+    auto &v = values[n];
+    if (!v)
+      v = std::make_unique<FEValues<dim>>(
+        mapping, fe, QIterated<dim>(QGauss<1>(fe.degree + 2), n),
+        update_values | update_quadrature_points | update_JxW_values);
+    return *v;
+  }
 
   double density(const Point<dim> &x) const
   {
@@ -130,18 +161,6 @@ LocalGoal<dim>::LocalGoal(const Mapping<dim> &mapping, const FiniteElement<dim> 
     else
       throw InputError("goal '" + goal.name + "': unknown kind '" + goal.kind +
                        "'; expected point or mean");
-    // Iterated Gauss with sub-cells of at most 1/16 of the mollifier radius (at most
-    // 64 per direction) resolves the mollifier or the rectangle's edges in a cell.
-    unsigned int n_sub = 8;
-    if (goal.kind == "point" && !part->dirac)
-    {
-      double h = 0;
-      for (const auto &cell : tria.active_cell_iterators())
-        if (part->meets(cell))
-          h = std::max(h, cell->diameter());
-      n_sub = std::min(64u, std::max(8u, unsigned(std::ceil(16. * h / goal.radius))));
-    }
-    part->quad = std::make_unique<QIterated<dim>>(QGauss<1>(fe.degree + 2), n_sub);
     parts.push_back(part);
   }
 }
@@ -167,10 +186,9 @@ bool LocalGoal<dim>::cell_vector(
     }
     if (!part->meets(cell))
       continue;
-    FEValues<dim> fv(mapping, fe, *part->quad,
-                     update_values | update_quadrature_points | update_JxW_values);
+    FEValues<dim> &fv = part->fe_values(part->sub_cells(cell), mapping, fe);
     fv.reinit(cell);
-    for (unsigned int q = 0; q < part->quad->size(); ++q)
+    for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
     {
       const double w =
           part->goal.weight * part->density(fv.quadrature_point(q)) * fv.JxW(q);
