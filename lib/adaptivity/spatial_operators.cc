@@ -33,6 +33,20 @@ struct AffineCell
   }
   Point<dim> to_real(const Point<dim> &xi) const { return origin + J * xi; }
   Point<dim> to_unit(const Point<dim> &x) const { return Point<dim>(J_inv * (x - origin)); }
+
+  /// Extent [lo, hi] of another cell along `direction` in this cell's unit coordinates.
+  template <typename Cell>
+  std::pair<double, double> extent(const Cell &other, unsigned int direction) const
+  {
+    double lo = 1e300, hi = -1e300;
+    for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+    {
+      const double x = to_unit(other->vertex(v))[direction];
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+    return {lo, hi};
+  }
 };
 } // namespace
 
@@ -107,21 +121,6 @@ std::vector<double> SpatialOperators<dim>::extended_nodes(double lo, double hi) 
   return x;
 }
 
-template <int dim>
-std::pair<double, double> SpatialOperators<dim>::extent(const cell_iterator &K,
-                                                        const cell_iterator &other,
-                                                        unsigned int direction) const
-{
-  double lo = 1e300, hi = -1e300;
-  const AffineCell<dim> k(K);
-  for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
-  {
-    const double x = k.to_unit(other->vertex(v))[direction];
-    lo = std::min(lo, x);
-    hi = std::max(hi, x);
-  }
-  return {lo, hi};
-}
 
 template <int dim>
 typename SpatialOperators<dim>::cell_iterator
@@ -153,7 +152,7 @@ LocalMap SpatialOperators<dim>::directional_lift(const cell_iterator &K,
   if (P.state() != IteratorState::valid)
     return LocalMap();
   std::vector<std::vector<double>> nodes(dim, gl);
-  const auto [lo, hi] = extent(K, P, i);
+  const auto [lo, hi] = AffineCell<dim>(K).extent(P, i);
   nodes[i] = extended_nodes(lo, hi);
   return build(K, nodes, {K, P});
 }
@@ -177,14 +176,7 @@ LocalMap SpatialOperators<dim>::patch_lift(const cell_iterator &K) const
   for (unsigned int i = 0; i < dim; ++i)
     if (parent->refinement_case() & RefinementCase<dim>::cut_axis(i))
     {
-      double lo = 1e300, hi = -1e300;
-      const AffineCell<dim> k(K);
-      for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
-      {
-        const double x = k.to_unit(parent->vertex(v))[i];
-        lo = std::min(lo, x);
-        hi = std::max(hi, x);
-      }
+      const auto [lo, hi] = AffineCell<dim>(K).extent(parent, i);
       nodes[i] = extended_nodes(lo, hi);
     }
   return build(K, nodes, cells);

@@ -75,9 +75,6 @@ private:
   /// K's nodes along one direction, extended by the other cell covering [lo, hi]
   /// (in K's unit coordinates) beyond the face at 0 or 1.
   std::vector<double> extended_nodes(double lo, double hi) const;
-  /// Extent [lo, hi] along `direction` of a cell in K's unit coordinates.
-  std::pair<double, double> extent(const cell_iterator &K, const cell_iterator &other,
-                                   unsigned int direction) const;
   LocalMap build(const cell_iterator &K, const std::vector<std::vector<double>> &nodes,
                  const std::vector<cell_iterator> &candidates) const;
 };
