@@ -107,7 +107,7 @@ TEST_P(Lifts, DirectionalLiftReproducesDegree2pAlongI)
 {
   const auto [kind, p] = GetParam();
   MeshSetup s(kind, p);
-  const SpatialOperators<2> ops(s.dofs, s.mapping, 2 * p);
+  const SpatialOperators<2> ops(s.dofs, 2 * p);
   for (unsigned int i = 0; i < 2; ++i)
   {
     const Poly v = i == 0 ? poly(2 * p, p) : poly(p, 2 * p);
@@ -132,7 +132,7 @@ TEST_P(Lifts, DirectionalLiftOfDegreePAlongIIsIdentity)
 {
   const auto [kind, p] = GetParam();
   MeshSetup s(kind, p);
-  const SpatialOperators<2> ops(s.dofs, s.mapping, 2 * p);
+  const SpatialOperators<2> ops(s.dofs, 2 * p);
   const FullMatrix<double> P = ops.interpolation_from(s.fe);
   for (unsigned int i = 0; i < 2; ++i)
   {
@@ -161,7 +161,7 @@ TEST_P(Lifts, PatchLiftReproducesPolynomialsOfThePatch)
   if (kind == MeshKind::mixed)
     return; // patches of different kinds: covered by the pure meshes
   MeshSetup s(kind, p);
-  const SpatialOperators<2> ops(s.dofs, s.mapping, 2 * p);
+  const SpatialOperators<2> ops(s.dofs, 2 * p);
   // isotropic patches: Q_2p; cut_x patches: 2p in x, p in y; cut_y: p in x, 2p in y
   const Poly v = kind == MeshKind::isotropic ? poly(2 * p, 2 * p)
                  : kind == MeshKind::aniso_x ? poly(2 * p, p)
@@ -203,7 +203,7 @@ TEST(Restriction, ProjectionsThatKeepDegreePAlongI)
     FE_Q<2> fe_p(p);
     DoFHandler<2> dofs_p(s.tria);
     dofs_p.distribute_dofs(fe_p);
-    const SpatialOperators<2> ops(dofs_p, s.mapping, 2 * p);
+    const SpatialOperators<2> ops(dofs_p, 2 * p);
     const unsigned int n = ops.weight_element().n_dofs_per_cell();
     for (unsigned int i = 0; i <= 2; ++i)
     {
@@ -256,7 +256,7 @@ TEST(Restriction, CellwiseApplicationStaysInTheFiniteElementSpace)
       FE_Q<2> fe_p(p);
       DoFHandler<2> dofs_p(s.tria);
       dofs_p.distribute_dofs(fe_p);
-      const SpatialOperators<2> ops(dofs_p, s.mapping, 2 * p);
+      const SpatialOperators<2> ops(dofs_p, 2 * p);
       const unsigned int n = ops.weight_element().n_dofs_per_cell();
       AffineConstraints<double> hanging;
       DoFTools::make_hanging_node_constraints(s.dofs, hanging);

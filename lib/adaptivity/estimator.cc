@@ -478,8 +478,7 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
          const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals)
 {
   const auto &tria = primal.dof_handler().get_triangulation();
-  const SpatialOperators<dim> ops(primal.dof_handler(), primal.mapping(),
-                                  weight_degree(primal, adjoint));
+  const SpatialOperators<dim> ops(primal.dof_handler(), weight_degree(primal, adjoint));
   const auto &fe_w = ops.weight_element();
   const FullMatrix<double> P = ops.interpolation_from(primal.finite_element()),
                            Q = ops.interpolation_from(adjoint.finite_element());
@@ -688,8 +687,7 @@ template <int dim, typename Body>
 void for_cells(const Space<dim> &primal, const Space<dim> &other,
                const TemporalBasis &basis, Body body)
 {
-  const SpatialOperators<dim> ops(primal.dof_handler(), primal.mapping(),
-                                  weight_degree(primal, other));
+  const SpatialOperators<dim> ops(primal.dof_handler(), weight_degree(primal, other));
   const FullMatrix<double> to_w = ops.interpolation_from(other.finite_element());
   CellKernel<dim> kernel(primal, ops.weight_element(), basis);
   std::vector<types::global_dof_index> idx(other.finite_element().n_dofs_per_cell());

@@ -3,7 +3,6 @@
 #include "adaptivity/temporal_reconstruction.h"
 
 #include <deal.II/base/quadrature_lib.h>
-#include <deal.II/fe/mapping.h>
 
 #include <algorithm>
 
@@ -15,13 +14,11 @@ namespace
 {
 /// The affine map of a cell through vertices 0, 1, 2(, 4): exact for parallelograms,
 /// which is what the lifts assume; much cheaper than Mapping's Newton inversion.
-template <int dim>
-struct AffineCell
+template <int dim> struct AffineCell
 {
   Point<dim> origin;
   Tensor<2, dim> J, J_inv;
-  template <typename Cell>
-  explicit AffineCell(const Cell &cell) : origin(cell->vertex(0))
+  template <typename Cell> explicit AffineCell(const Cell &cell) : origin(cell->vertex(0))
   {
     for (unsigned int d = 0; d < dim; ++d)
     {
@@ -32,7 +29,10 @@ struct AffineCell
     J_inv = invert(J);
   }
   Point<dim> to_real(const Point<dim> &xi) const { return origin + J * xi; }
-  Point<dim> to_unit(const Point<dim> &x) const { return Point<dim>(J_inv * (x - origin)); }
+  Point<dim> to_unit(const Point<dim> &x) const
+  {
+    return Point<dim>(J_inv * (x - origin));
+  }
 
   /// Extent [lo, hi] of another cell along `direction` in this cell's unit coordinates.
   template <typename Cell>
@@ -65,9 +65,8 @@ void LocalMap::apply(const Vector<double> &global, Vector<double> &local,
 
 template <int dim>
 SpatialOperators<dim>::SpatialOperators(const DoFHandler<dim> &dofs,
-                                        const Mapping<dim> &mapping,
                                         unsigned int weight_degree)
-    : dofs(dofs), mapping(mapping), p(dofs.get_fe().degree), fe_w(weight_degree)
+    : dofs(dofs), p(dofs.get_fe().degree), fe_w(weight_degree)
 {
   const QGaussLobatto<1> q(p + 1);
   for (unsigned int k = 0; k < q.size(); ++k)
@@ -120,7 +119,6 @@ std::vector<double> SpatialOperators<dim>::extended_nodes(double lo, double hi) 
   std::sort(x.begin(), x.end());
   return x;
 }
-
 
 template <int dim>
 typename SpatialOperators<dim>::cell_iterator

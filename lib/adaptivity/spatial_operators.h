@@ -20,7 +20,6 @@
 // Lifts are returned as LocalMap: W-local coefficients = matrix * u(dofs).
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/mapping.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -46,8 +45,7 @@ public:
 
   /// `dofs` is the primal DoFHandler (FE_Q(p)); W = FE_Q(weight_degree), weight_degree >=
   /// 2p.
-  SpatialOperators(const dealii::DoFHandler<dim> &dofs,
-                   const dealii::Mapping<dim> &mapping, unsigned int weight_degree);
+  SpatialOperators(const dealii::DoFHandler<dim> &dofs, unsigned int weight_degree);
 
   const dealii::FE_Q<dim> &weight_element() const { return fe_w; }
   /// R_i (i < dim) or R_h (i == dim) on W-local coefficients.
@@ -66,7 +64,6 @@ public:
 
 private:
   const dealii::DoFHandler<dim> &dofs;
-  const dealii::Mapping<dim> &mapping;
   const unsigned int p;
   dealii::FE_Q<dim> fe_w;
   std::vector<double> gl; // degree-p Gauss-Lobatto nodes on [0,1]

@@ -172,8 +172,7 @@ void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
 double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh &mesh,
                    const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
-  const SpatialOperators<2> ops(primal.dof_handler(), primal.mapping(),
-                                2 * primal.degree());
+  const SpatialOperators<2> ops(primal.dof_handler(), 2 * primal.degree());
   GoalSpec g = goal;
   g.weight = 1;
   const LocalGoal<2> local(primal.mapping(), ops.weight_element(),
