@@ -519,6 +519,16 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
   ind.eta_tau_cell.assign(tria.n_active_cells(), 0.);
   ind.eta_tau_slab.assign(N, 0.);
 
+  // E_tau at the temporal Gauss points (values [0] and derivatives [1]): the same
+  // combinations for every cell and slab
+  std::vector<std::array<TimeCombination, 2>> E_z(kernel.n_points()), E_u(kernel.n_points());
+  for (unsigned int m = 0; m < kernel.n_points(); ++m)
+    for (unsigned int d = 0; d < 2; ++d)
+    {
+      E_z[m][d] = recon.adjoint(kernel.point(m), d == 1);
+      E_u[m][d] = recon.primal(kernel.point(m), d == 1);
+    }
+
   std::vector<types::global_dof_index> idx_q(adjoint.finite_element().n_dofs_per_cell());
   SlabFunctional rho, supg, A_rh, S_rh, A_z, Jf;
   for (const auto &cell : primal.dof_handler().active_cell_iterators())
@@ -622,10 +632,9 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       SlabFunction ez, eu;
       for (unsigned int m = 0; m < kernel.n_points(); ++m)
       {
-        const double s = kernel.point(m);
         for (bool deriv : {false, true})
         {
-          const TimeCombination a = recon.adjoint(s, deriv), b = recon.primal(s, deriv);
+          const TimeCombination &a = E_z[m][deriv], &b = E_u[m][deriv];
           Vector<double> vz(nw), vu(nw);
           vz.add(a.outside, z_next);
           vu.add(b.outside, u_prev);
