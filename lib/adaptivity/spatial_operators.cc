@@ -12,26 +12,65 @@ using namespace dealii;
 
 namespace
 {
-/// The affine map of a cell through vertices 0, 1, 2(, 4): exact for parallelograms,
-/// which is what the lifts assume; much cheaper than Mapping's Newton inversion.
-template <int dim> struct AffineCell
+/// The multilinear map of a cell through its vertices, the map of MappingQ(1): exact
+/// for any straight-edged cell (parallelograms, trapezoids, the chords of a curved
+/// boundary), extrapolated linearly beyond the cell. to_unit() is Newton's method from
+/// the affine guess through vertices 0, 1, 2(, 4), which is exact for parallelograms.
+template <int dim> struct CellMap
 {
+  std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell> v;
   Point<dim> origin;
-  Tensor<2, dim> J, J_inv;
-  template <typename Cell> explicit AffineCell(const Cell &cell) : origin(cell->vertex(0))
+  Tensor<2, dim> J0_inv;
+  template <typename Cell> explicit CellMap(const Cell &cell) : origin(cell->vertex(0))
   {
+    for (unsigned int k = 0; k < v.size(); ++k)
+      v[k] = cell->vertex(k);
+    Tensor<2, dim> J0;
     for (unsigned int d = 0; d < dim; ++d)
-    {
-      const Tensor<1, dim> edge = cell->vertex(1u << d) - origin;
       for (unsigned int e = 0; e < dim; ++e)
-        J[e][d] = edge[e];
-    }
-    J_inv = invert(J);
+        J0[e][d] = v[1u << d][e] - origin[e];
+    J0_inv = invert(J0);
   }
-  Point<dim> to_real(const Point<dim> &xi) const { return origin + J * xi; }
+  Point<dim> to_real(const Point<dim> &xi, Tensor<2, dim> *jacobian = nullptr) const
+  {
+    Point<dim> x;
+    if (jacobian)
+      *jacobian = 0;
+    for (unsigned int k = 0; k < v.size(); ++k)
+    {
+      double phi = 1;
+      Tensor<1, dim> dphi;
+      for (unsigned int d = 0; d < dim; ++d)
+        dphi[d] = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        const bool upper = (k >> d) & 1u;
+        const double f = upper ? xi[d] : 1. - xi[d], df = upper ? 1. : -1.;
+        phi *= f;
+        for (unsigned int e = 0; e < dim; ++e)
+          dphi[e] *= (e == d ? df : f);
+      }
+      x += phi * v[k];
+      if (jacobian)
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int b = 0; b < dim; ++b)
+            (*jacobian)[a][b] += v[k][a] * dphi[b];
+    }
+    return x;
+  }
   Point<dim> to_unit(const Point<dim> &x) const
   {
-    return Point<dim>(J_inv * (x - origin));
+    Point<dim> xi(J0_inv * (x - origin));
+    Tensor<2, dim> J;
+    for (unsigned int it = 0; it < 30; ++it)
+    {
+      const Tensor<1, dim> res = to_real(xi, &J) - x;
+      const Tensor<1, dim> step = invert(J) * res;
+      xi -= step;
+      if (step.norm() < 1e-14 * (1. + xi.norm()))
+        break;
+    }
+    return xi;
   }
 
   /// Extent [lo, hi] of another cell along `direction` in this cell's unit coordinates.
@@ -39,9 +78,9 @@ template <int dim> struct AffineCell
   std::pair<double, double> extent(const Cell &other, unsigned int direction) const
   {
     double lo = 1e300, hi = -1e300;
-    for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+    for (unsigned int k = 0; k < GeometryInfo<dim>::vertices_per_cell; ++k)
     {
-      const double x = to_unit(other->vertex(v))[direction];
+      const double x = to_unit(other->vertex(k))[direction];
       lo = std::min(lo, x);
       hi = std::max(hi, x);
     }
@@ -150,7 +189,7 @@ LocalMap SpatialOperators<dim>::directional_lift(const cell_iterator &K,
   if (P.state() != IteratorState::valid)
     return LocalMap();
   std::vector<std::vector<double>> nodes(dim, gl);
-  const auto [lo, hi] = AffineCell<dim>(K).extent(P, i);
+  const auto [lo, hi] = CellMap<dim>(K).extent(P, i);
   nodes[i] = extended_nodes(lo, hi);
   return build(K, nodes, {K, P});
 }
@@ -174,7 +213,7 @@ LocalMap SpatialOperators<dim>::patch_lift(const cell_iterator &K) const
   for (unsigned int i = 0; i < dim; ++i)
     if (parent->refinement_case() & RefinementCase<dim>::cut_axis(i))
     {
-      const auto [lo, hi] = AffineCell<dim>(K).extent(parent, i);
+      const auto [lo, hi] = CellMap<dim>(K).extent(parent, i);
       nodes[i] = extended_nodes(lo, hi);
     }
   return build(K, nodes, cells);
@@ -204,10 +243,10 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator & /*K = candidates[0]*
   for (unsigned int d = 0; d < dim; ++d)
     n_grid *= (n[d] = nodes[d].size());
   const auto &wpts = fe_w.get_unit_support_points();
-  std::vector<AffineCell<dim>> affine;
+  std::vector<CellMap<dim>> maps;
   for (const auto &c : candidates)
-    affine.emplace_back(c);
-  const double tol = 1e-8;
+    maps.emplace_back(c);
+  const double tol = 1e-8, slack = 0.2;
   auto inside = [&](const Point<dim> &x)
   {
     for (unsigned int d = 0; d < dim; ++d)
@@ -234,12 +273,23 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator & /*K = candidates[0]*
     }
     else
     {
-      const Point<dim> x = affine[0].to_real(xi);
-      for (unsigned int c = 1; c < candidates.size() && c_found == candidates.size(); ++c)
+      // The candidate containing the point, or, on curved patches (children placed on
+      // a manifold do not tile their parent's straight-edged image exactly), the
+      // nearest one if the point is at most `slack` outside it.
+      const Point<dim> x = maps[0].to_real(xi);
+      double best = slack;
+      for (unsigned int c = 1; c < candidates.size() && best > 0.; ++c)
       {
-        xc = affine[c].to_unit(x);
-        if (inside(xc))
+        const Point<dim> y = maps[c].to_unit(x);
+        double outside = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          outside = std::max(outside, std::max(-y[d], y[d] - 1.));
+        if (outside < best)
+        {
+          best = std::max(outside, 0.);
           c_found = c;
+          xc = y;
+        }
       }
     }
     if (c_found == candidates.size())

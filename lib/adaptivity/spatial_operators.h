@@ -15,7 +15,8 @@
 //             face is not refined (the neighbour is as large as K or coarser);
 //          3. otherwise there is no lift (I_2h,i u - u := 0 on K).
 //        The 2p+1 nodes along i are K's p+1 nodes and P's p nodes beyond the shared
-//        face, located through the affine maps of the cells (exact for parallelograms).
+//        face, located through the cells' multilinear (MappingQ(1)) maps; on curved
+//        patches a point up to 0.2 cell widths outside its nearest candidate is clamped.
 //
 // Lifts are returned as LocalMap: W-local coefficients = matrix * u(dofs).
 #include <deal.II/dofs/dof_handler.h>

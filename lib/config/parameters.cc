@@ -46,9 +46,9 @@ std::vector<Entry> make_entries()
   auto text = std::make_shared<P::Anything>();
   return {
       {"scene", "name", "moving_hump", Kind::text,
-       choice("moving_hump|manufactured|heat|boundary_layer"),
-       "Benchmark scene (see SCENES.md): moving_hump, manufactured, heat or "
-       "boundary_layer."},
+       choice("moving_hump|manufactured|heat|boundary_layer|hemker"),
+       "Benchmark scene (see SCENES.md): moving_hump, manufactured, heat, "
+       "boundary_layer or hemker."},
       {"scene", "variant", "", Kind::text, text,
        "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
        "alpha), poly_space (rotating coefficients, spatial part in Q2). heat: poly "

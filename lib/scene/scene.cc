@@ -63,10 +63,12 @@ template <int dim> std::unique_ptr<Scene<dim>> create_scene(const Parameters &pr
     scene = std::make_unique<Heat>(prm.epsilon, prm.variant);
   else if (prm.scene == "boundary_layer")
     scene = std::make_unique<BoundaryLayer>(prm.epsilon, prm.variant);
+  else if (prm.scene == "hemker")
+    scene = std::make_unique<Hemker>(prm.epsilon, prm.variant);
   else
     throw InputError("invalid value '" + prm.scene +
-                     "' for key 'scene.name'; expected moving_hump, manufactured, heat "
-                     "or boundary_layer");
+                     "' for key 'scene.name'; expected moving_hump, manufactured, heat, "
+                     "boundary_layer or hemker");
   scene->end_time = prm.end_time;
   return scene;
 }

@@ -7,6 +7,8 @@
 
 #include "goal/goal_spec.h"
 
+#include <array>
+#include <limits>
 #include <memory>
 #include <set>
 #include <string>
@@ -30,6 +32,30 @@ public:
                                           double t) const = 0;
   virtual double laplacian(const dealii::Point<dim> &x, double t) const = 0;
   virtual double time_derivative(const dealii::Point<dim> &x, double t) const = 0;
+};
+
+/// Derived outputs of u_h(T) a scene asks for (SCENES.md, hemker): cut lines sampled
+/// to CSV, the width of a layer along a ray, over- and undershoots.
+template <int dim> struct ProbeSpec
+{
+  struct Line
+  {
+    std::string name;
+    dealii::Point<dim> start, end;
+  };
+  std::vector<Line> cut_lines;
+  /// Layer width |x_1 - x_0| along `layer_ray` (start on the wall, end outside), with
+  /// u(x_1) = layer_levels[1], u(x_0) = layer_levels[0], first crossings from the start.
+  bool has_layer = false;
+  Line layer_ray;
+  std::array<double, 2> layer_levels{{0.1, 0.9}};
+  /// Bounds of the exact solution for over-/undershoots: u_min <= u <= u_max. NaN:
+  /// taken from the exact solution at the same sample points.
+  double u_min = std::numeric_limits<double>::quiet_NaN(),
+         u_max = std::numeric_limits<double>::quiet_NaN();
+  /// Over-/undershoots are also reported in the strip strip[0] < x_0 < strip[1].
+  bool has_strip = false;
+  std::array<double, 2> strip{{0., 0.}};
 };
 
 template <int dim> class Scene
@@ -58,6 +84,9 @@ public:
   /// The scene's goal functionals (SCENES.md); `radius` is the mollifier radius of
   /// point goals. Default: the value at the domain's centre (0.5, 0.5) at T.
   virtual std::vector<GoalSpec> default_goals(double radius) const;
+
+  /// Derived outputs at T (default: over-/undershoots against the exact solution).
+  virtual ProbeSpec<dim> probes() const { return {}; }
 
   /// nullptr if the scene has no exact solution.
   const ExactSolution<dim> *exact() const { return exact_solution.get(); }

@@ -3,6 +3,7 @@
 #include "config/errors.h"
 
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria.h>
 
 #include <cmath>
@@ -293,5 +294,83 @@ Heat::Heat(double eps, const std::string &variant)
 void Heat::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const
 {
   unit_square(tria);
+}
+Hemker::Hemker(double eps, const std::string &variant)
+{
+  require_variant("hemker", variant, {""});
+  epsilon = eps;
+  dirichlet_ids = {0, 1};
+  neumann_ids = {2};
+}
+
+void Hemker::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const
+{
+  using namespace dealii;
+  // The square (-3,3)^2 around the hole in 8 cells, merged with (3,8)x(-3,3) in 2 cells.
+  Triangulation<2> hole, padding;
+  GridGenerator::hyper_cube_with_cylindrical_hole(hole, 1., 3.);
+  GridGenerator::subdivided_hyper_rectangle(padding, {1u, 2u}, Point<2>(3., -3.),
+                                            Point<2>(8., 3.));
+  GridGenerator::merge_triangulations(hole, padding, tria);
+  tria.reset_all_manifolds();
+  tria.set_all_manifold_ids(numbers::flat_manifold_id);
+  for (const auto &cell : tria.active_cell_iterators())
+  {
+    if (cell->center()[0] < 3.)
+      cell->set_all_manifold_ids(1);
+    for (const auto &face : cell->face_iterators())
+      if (face->at_boundary())
+      {
+        const Point<2> c = face->center();
+        if (c.norm() < 2.)
+        {
+          face->set_boundary_id(1);
+          face->set_manifold_id(0);
+        }
+        else
+          face->set_boundary_id(std::abs(c[0] + 3.) < 1e-12 ? 0 : 2);
+      }
+  }
+  tria.set_manifold(0, PolarManifold<2>(Point<2>()));
+  TransfiniteInterpolationManifold<2> transfinite;
+  transfinite.initialize(tria);
+  tria.set_manifold(1, transfinite);
+}
+
+double Hemker::dirichlet_value(const dealii::Point<2> &x, double) const
+{
+  return x.norm() < 2. ? 1. : 0.;
+}
+
+std::vector<GoalSpec> Hemker::default_goals(double radius) const
+{
+  const double a = 1. / std::sqrt(2.);
+  GoalSpec g1, g2;
+  g1.name = "u_xe1_I";
+  g1.center = {4., 1.};
+  g2.name = "u_xe2_I";
+  g2.center = {-a - 1e-6, a + 1e-6};
+  for (GoalSpec *g : {&g1, &g2})
+  {
+    g->radius = radius;
+    g->over_time = true;
+  }
+  return {g1, g2};
+}
+
+ProbeSpec<2> Hemker::probes() const
+{
+  const double a = 1. / std::sqrt(2.);
+  const dealii::Point<2> x_gamma(-a, a), normal(-a, a);
+  ProbeSpec<2> spec;
+  spec.cut_lines = {{"x4", dealii::Point<2>(4., -3.), dealii::Point<2>(4., 3.)},
+                    {"normal", x_gamma, x_gamma + 2. * normal}};
+  spec.has_layer = true;
+  spec.layer_ray = spec.cut_lines[1];
+  spec.u_min = 0.;
+  spec.u_max = 1.;
+  spec.has_strip = true;
+  spec.strip = {{-1.5, 1.5}};
+  return spec;
 }
 } // namespace anisodwr

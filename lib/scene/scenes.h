@@ -97,4 +97,39 @@ private:
   double (*T)(double);
   double (*dT)(double);
 };
+/// Nonstationary Hemker problem (SCENES.md): flow b = (1, 0) past the unit circle in
+/// (-3,8)x(-3,3), u = 1 on the circle, u = 0 at the inflow x = -3, homogeneous Neumann
+/// elsewhere, u_0 = 0, f = 0, alpha = 0; no exact solution. Boundary ids: 0 inflow,
+/// 1 circle (Dirichlet), 2 the rest (Neumann). The circle carries a PolarManifold
+/// (manifold id 0), the cells of the square (-3,3)^2 a TransfiniteInterpolationManifold
+/// (id 1); the FE map is MappingQ(1), so the discrete boundary is the polygon through
+/// the refined vertices on the circle.
+class Hemker : public Scene<2>
+{
+public:
+  Hemker(double epsilon, const std::string &variant);
+  std::string name() const override { return "hemker"; }
+  void make_coarse_grid(dealii::Triangulation<2, 2> &tria) const override;
+  dealii::Tensor<1, 2> convection(const dealii::Point<2> &, double) const override
+  {
+    return dealii::Tensor<1, 2>({1., 0.});
+  }
+  double reaction(const dealii::Point<2> &, double) const override { return 0.; }
+  bool coefficients_depend_on_time() const override { return false; }
+  double rhs(const dealii::Point<2> &, double) const override { return 0.; }
+  double initial_value(const dealii::Point<2> &) const override { return 0.; }
+  /// 1 on the circle (|x| < 2), 0 at the inflow.
+  double dirichlet_value(const dealii::Point<2> &x, double t) const override;
+  double neumann_value(const dealii::Point<2> &, const dealii::Tensor<1, 2> &,
+                       double) const override
+  {
+    return 0.;
+  }
+  /// J_1 = int_I u(x_e1, t) dt, J_2 = int_I u(x_e2, t) dt (mollified), x_e1 = (4, 1),
+  /// x_e2 = (-2^{-1/2} - 1e-6, 2^{-1/2} + 1e-6).
+  std::vector<GoalSpec> default_goals(double radius) const override;
+  /// Cut lines x = 4 and along the normal at x_Gamma = (-2^{-1/2}, 2^{-1/2}), the layer
+  /// width there, bounds [0, 1], strip -1.5 < x < 1.5.
+  ProbeSpec<2> probes() const override;
+};
 } // namespace anisodwr

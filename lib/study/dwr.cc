@@ -1,4 +1,5 @@
 #include "study/dwr.h"
+#include "study/probes.h"
 
 #include "adaptivity/estimator.h"
 #include "adaptivity/refinement.h"
@@ -11,6 +12,7 @@
 #include "slab/primal_march.h"
 
 #include <deal.II/base/timer.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/grid/tria.h>
 
 #include <cmath>
@@ -78,6 +80,7 @@ struct LoopRow
   std::vector<double> J_goal, J_goal_exact;
   std::vector<double> weights;
   double t_primal = 0, t_adjoint = 0, t_estimate = 0, t_refine = 0, mem = 0;
+  ProbeResult probes;
   double J_error() const { return std::abs(J_exact - J); }
   double I_eff() const { return std::abs((eta_h_total + eta_tau) / (J_exact - J)); }
   std::vector<double> values() const
@@ -162,7 +165,14 @@ void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
         << "\": {\"J_h\": " << num(r.J_goal[g])
         << ", \"J_exact\": " << num(r.J_goal_exact[g])
         << ", \"weight\": " << num(r.weights[g]) << "}";
-    f << "}}";
+    const auto &p = r.probes;
+    f << "}, \"probes\": {\"layer_width\": " << num(p.layer_width)
+      << ", \"s_hi\": " << num(p.s_hi) << ", \"s_lo\": " << num(p.s_lo)
+      << ", \"overshoot\": " << num(p.overshoot)
+      << ", \"undershoot\": " << num(p.undershoot)
+      << ", \"overshoot_strip\": " << num(p.overshoot_strip)
+      << ", \"undershoot_strip\": " << num(p.undershoot_strip)
+      << ", \"u_min\": " << num(p.u_min) << ", \"u_max\": " << num(p.u_max) << "}}";
   }
   f << "\n  ],\n  \"wall_time\": " << num(wall)
     << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << "\n}\n";
@@ -302,6 +312,14 @@ void run_dwr(const Parameters &prm)
   marking.theta_coarsen = prm.theta_coarsen;
 
   CsvTable table(prm.output_directory + "/loops.csv", columns);
+  std::vector<std::string> probe_columns{"loop", "N_space", "N_tot"};
+  for (const auto &g : goals)
+    probe_columns.push_back("J_" + g.name);
+  for (const char *c : {"layer_width", "s_hi", "s_lo", "overshoot", "undershoot",
+                        "overshoot_strip", "undershoot_strip"})
+    probe_columns.emplace_back(c);
+  CsvTable probe_table(prm.output_directory + "/probes.csv", probe_columns);
+  const ProbeSpec<2> probe_spec = scene->probes();
   std::vector<LoopRow> rows;
   std::vector<std::pair<double, std::string>> vtu_records;
   std::string stop_reason = "max loops";
@@ -382,9 +400,20 @@ void run_dwr(const Parameters &prm)
         std::vector<double> ar_cell;
         row.ar = max_aspect_ratio(tria, primal.mapping(), &ar_cell);
 
+        Vector<double> uT;
+        combine_blocks(U.back(), basis.right_trace(), uT);
+        row.probes = evaluate_probes(primal.dof_handler(), primal.mapping(), uT,
+                                     probe_spec, *scene, scene->end_time);
+        for (const auto &l : probe_spec.cut_lines)
+          write_line_csv(prm.output_directory + "/cut_" + l.name + "_loop-" +
+                             Utilities::int_to_string(loop, 4) + ".csv",
+                         LineEvaluator<2>(primal.dof_handler(), primal.mapping(), uT,
+                                          l.start, l.end),
+                         2 * prm.p);
+
         if (prm.vtu_loops > 0 && (loop % prm.vtu_loops == 0 || loop == prm.loops))
         {
-          Vector<double> uT, ex(ar_cell.size()), ey(ar_cell.size()), et(ar_cell.size()),
+          Vector<double> ex(ar_cell.size()), ey(ar_cell.size()), et(ar_cell.size()),
               ar(ar_cell.begin(), ar_cell.end());
           for (unsigned int c = 0; c < ar_cell.size(); ++c)
           {
@@ -392,7 +421,6 @@ void run_dwr(const Parameters &prm)
             ey[c] = ind.eta_h_cell[c][1];
             et[c] = ind.eta_tau_cell[c];
           }
-          combine_blocks(U.back(), basis.right_trace(), uT);
           vtu_records.emplace_back(loop, write_vtu(primal, uT, scene->end_time,
                                                    prm.output_directory, "loop", loop,
                                                    {{"eta_hx", ex},
@@ -428,6 +456,14 @@ void run_dwr(const Parameters &prm)
       row.mem = peak_memory_mb();
       rows.push_back(row);
       table.add_row(row.values());
+      {
+        std::vector<double> v{double(row.loop), row.n_space, row.n_tot};
+        v.insert(v.end(), row.J_goal.begin(), row.J_goal.end());
+        const auto &p = row.probes;
+        v.insert(v.end(), {p.layer_width, p.s_hi, p.s_lo, p.overshoot, p.undershoot,
+                           p.overshoot_strip, p.undershoot_strip});
+        probe_table.add_row(v);
+      }
       write_latex(prm.output_directory + "/loops.tex", rows);
       write_summary(prm, goals, rows, "running", "", wall.wall_time());
       std::cout << std::setw(4) << loop << std::setw(9) << std::size_t(row.n_space)
