@@ -123,6 +123,9 @@ std::vector<Entry> make_entries()
        "Stop before a loop whose N_tot would exceed this (0: no budget)."},
       {"adaptivity", "max_memory_mb", "0", Kind::real, real(0.),
        "Stop when the peak memory exceeds this many MB (0: no budget)."},
+      {"adaptivity", "max_wall_time", "0", Kind::real, real(0.),
+       "Wall-time budget in seconds (0: none): no new loop starts when the time so far "
+       "plus twice the last loop's time would exceed it."},
       {"adaptivity", "adjoint_degree", "0", Kind::integer, integer(0, 8),
        "Polynomial degree q of the adjoint; 0 means q = 2p."},
       {"output", "directory", "results/moving_hump", Kind::text, text,
@@ -292,6 +295,7 @@ public:
     p.tolerance = real("adaptivity.tolerance");
     p.max_dofs = real("adaptivity.max_dofs");
     p.max_memory_mb = real("adaptivity.max_memory_mb");
+    p.max_wall_time = real("adaptivity.max_wall_time");
     p.adjoint_degree = integer("adaptivity.adjoint_degree");
     p.vtu_loops = integer("output.vtu_loops");
     p.output_directory = get("output.directory");
@@ -433,6 +437,7 @@ std::string Parameters::to_json(unsigned int indent) const
       {"adaptivity.tolerance", num(tolerance)},
       {"adaptivity.max_dofs", num(max_dofs)},
       {"adaptivity.max_memory_mb", num(max_memory_mb)},
+      {"adaptivity.max_wall_time", num(max_wall_time)},
       {"adaptivity.adjoint_degree", std::to_string(adjoint_degree)},
       {"output.vtu_loops", std::to_string(vtu_loops)},
       {"output.directory", output_directory},

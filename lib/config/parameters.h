@@ -52,6 +52,7 @@ struct Parameters
   double tolerance = 0.;
   double max_dofs = 0.;
   double max_memory_mb = 0.;
+  double max_wall_time = 0.; ///< s; 0: no budget
   unsigned int adjoint_degree = 0;
 
   // [output]

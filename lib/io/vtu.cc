@@ -13,6 +13,36 @@ namespace anisodwr
 using namespace dealii;
 
 
+namespace
+{
+/// One row per active cell: the vertices in counter-clockwise order (0, 1, 3, 2), u at
+/// them, and the cell data: enough for postprocess/charts.py to draw the mesh.
+template <int dim>
+void write_cells_csv(const Space<dim> &space, const Vector<double> &u,
+                     const CellData &cell_data, const std::string &path)
+{
+  static_assert(dim == 2, "cells.csv is written for 2D meshes");
+  std::ofstream f(path);
+  f << std::setprecision(10) << "x0,y0,x1,y1,x2,y2,x3,y3,u0,u1,u2,u3";
+  for (const auto &entry : cell_data)
+    f << "," << entry.first;
+  f << "\n";
+  const unsigned int order[4] = {0, 1, 3, 2};
+  unsigned int c = 0;
+  for (const auto &cell : space.dof_handler().active_cell_iterators())
+  {
+    for (unsigned int v : order)
+      f << (v ? "," : "") << cell->vertex(v)[0] << "," << cell->vertex(v)[1];
+    for (unsigned int v : order)
+      f << "," << u(cell->vertex_dof_index(v, 0));
+    for (const auto &entry : cell_data)
+      f << "," << entry.second[c];
+    f << "\n";
+    ++c;
+  }
+}
+} // namespace
+
 template <int dim>
 std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t,
                       const std::string &dir, const std::string &name, unsigned int index,
@@ -41,6 +71,8 @@ std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t
   file << name << "-" << std::setw(4) << std::setfill('0') << index << ".vtu";
   std::ofstream f(dir + "/" + file.str());
   out.write_vtu(f);
+  write_cells_csv(space, u, cell_data,
+                  dir + "/" + file.str().substr(0, file.str().size() - 4) + ".cells.csv");
   return file.str();
 }
 

@@ -12,7 +12,8 @@ namespace anisodwr
 using CellData = std::vector<std::pair<std::string, dealii::Vector<double>>>;
 
 /// Writes dir/<name>-<index>.vtu with the field "u", "u_exact" when known and the
-/// given cell data; returns the file name relative to dir.
+/// given cell data, and dir/<name>-<index>.cells.csv (per cell: vertices, u at them,
+/// the cell data) for the chart script; returns the VTU file name relative to dir.
 template <int dim>
 std::string write_vtu(const Space<dim> &space, const dealii::Vector<double> &u, double t,
                       const std::string &dir, const std::string &name, unsigned int index,

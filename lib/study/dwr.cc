@@ -445,6 +445,13 @@ void run_dwr(const Parameters &prm)
         stop = true;
         stop_reason = "memory budget";
       }
+      else if (prm.max_wall_time > 0 &&
+               wall.wall_time() + 2. * (row.t_primal + row.t_adjoint + row.t_estimate) >
+                   prm.max_wall_time)
+      {
+        stop = true;
+        stop_reason = "wall-time budget";
+      }
       if (!stop)
       {
         Timer t;
