@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# The chart script runs on small output directories (a 2-loop hemker DWR run with cells
+# and cut lines, a 3-level convergence study) and writes non-empty PNG files.
+set -u
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+"$bin" run "$src/config/hemker.json" --output "$tmp/hemker" --set adaptivity.loops=2 \
+  --set output.vtu_loops=1 >"$tmp/hemker.log" 2>&1 || { cat "$tmp/hemker.log"; exit 1; }
+"$bin" run "$src/config/moving_hump_paper.json" --output "$tmp/hump" --set adaptivity.loops=2 \
+  >"$tmp/hump.log" 2>&1 || { cat "$tmp/hump.log"; exit 1; }
+"$bin" run "$src/config/convergence_time_r1.json" --output "$tmp/conv" --set study.levels=3 \
+  >"$tmp/conv.log" 2>&1 || { cat "$tmp/conv.log"; exit 1; }
+charts="/usr/bin/python3 $src/postprocess/charts.py"
+$charts all "$tmp/png" "$tmp/hemker" "$tmp/hump=hump" || fail=1
+$charts convergence "$tmp/png/convergence.png" "$tmp/conv/convergence.csv=dG(1)" || fail=1
+$charts goal-values "$tmp/png/goals.png" "$tmp/hemker" || fail=1
+$charts mesh "$tmp/png/mesh_u.png" "$tmp/hemker" 2 u -1.5 1.5 -1.5 1.5 || fail=1
+for f in hemker_history hemker_mesh_0002 hemker_cutlines hump_history work_precision \
+  convergence goals mesh_u; do
+  png="$tmp/png/$f.png"
+  if [ -s "$png" ] && [ "$(head -c 4 "$png" | tail -c 3)" = PNG ] && [ "$(stat -c %s "$png")" -gt 5000 ]; then
+    echo "ok: $f.png ($(stat -c %s "$png") bytes)"
+  else
+    echo "FAIL: $f.png missing, empty or not a PNG"
+    fail=1
+  fi
+done
+exit $fail
