@@ -10,10 +10,12 @@ Usage:
   charts.py goal-values OUT.png RUN[=LABEL] ...      J_i per loop against N_tot (scenes without exact J)
   charts.py history OUT.png RUN                      |eta_h,x|, |eta_h,y|, |eta_tau|, |J error|, I_eff per loop
   charts.py convergence OUT.png CSV[=LABEL] ...      errors against h or tau from convergence.csv tables
-  charts.py mesh OUT.png RUN LOOP [FIELD] [x0 x1 y0 y1]
+  charts.py mesh OUT.png RUN LOOP [FIELD] [x0 x1 y0 y1]   (LOOP -1: the last)
                                                      cells of a loop coloured by FIELD (aspect_ratio,
                                                      eta_hx, eta_hy, eta_tau, u); optional zoom window
   charts.py cutlines OUT.png RUN LOOP[,LOOP...]      u along the cut lines of hemker
+  charts.py compare-cut OUT.png LINE LOOP RUN[=LABEL] ...
+                                                     one cut line of several runs at one loop (-1: last)
   charts.py all OUTDIR RUN ...                       history, mesh (last and middle loop), cut lines of
                                                      each run, and work-precision of all runs
 """
@@ -145,8 +147,15 @@ def loop_files(run, pattern):
     return {int(re.search(r"(\d{4})", os.path.basename(f)).group(1)): f for f in files}
 
 
+def pick(files, loop):
+    """The file of a loop; loop -1 is the last one."""
+    return files[max(files)] if int(loop) < 0 else files[int(loop)]
+
+
 def mesh(out, run, loop, field="aspect_ratio", window=None):
-    rows = read(loop_files(run, "loop-*.cells.csv")[int(loop)])
+    files = loop_files(run, "loop-*.cells.csv")
+    loop = max(files) if int(loop) < 0 else int(loop)
+    rows = read(files[loop])
     polys = [[(r[f"x{k}"], r[f"y{k}"]) for k in range(4)] for r in rows]
     if field == "u":
         values = [sum(r[f"u{k}"] for k in range(4)) / 4 for r in rows]
@@ -180,13 +189,32 @@ def cutlines(out, run, loops):
     for a, name in zip(ax[0], names):
         files = loop_files(run, f"cut_{name}_loop-*.csv")
         for loop in loops:
-            rows = read(files[int(loop)])
+            loop = max(files) if int(loop) < 0 else int(loop)
+            rows = read(files[loop])
             a.plot([r["s"] for r in rows], [r["u"] for r in rows], "-", lw=1, label=f"loop {int(loop)}")
         a.set_xlabel("s along the line")
         a.set_ylabel("$u_h(T)$")
         a.set_title(f"cut line {name}")
         a.grid(True, alpha=0.3)
         a.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+def compare_cut(out, line, loop, runs):
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for arg in runs:
+        run, label = split_label(arg)
+        files = loop_files(run, f"cut_{line}_loop-*.csv")
+        chosen = max(files) if int(loop) < 0 else int(loop)
+        rows = read(pick(files, chosen))
+        ax.plot([r["s"] for r in rows], [r["u"] for r in rows], "-", lw=1, label=f"{label} (loop {chosen})")
+    ax.axhline(0, color="k", lw=0.5)
+    ax.axhline(1, color="k", lw=0.5)
+    ax.set_xlabel(f"s along cut line {line}")
+    ax.set_ylabel("$u_h(T)$")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
 
@@ -234,6 +262,8 @@ def main(argv):
         mesh(out, rest[0], rest[1], rest[2] if len(rest) > 2 else "aspect_ratio", window)
     elif cmd == "cutlines":
         cutlines(out, rest[0], rest[1].split(","))
+    elif cmd == "compare-cut":
+        compare_cut(out, rest[0], rest[1], rest[2:])
     elif cmd == "all":
         all_charts(out, rest)
     else:

@@ -17,9 +17,10 @@ charts="/usr/bin/python3 $src/postprocess/charts.py"
 $charts all "$tmp/png" "$tmp/hemker" "$tmp/hump=hump" || fail=1
 $charts convergence "$tmp/png/convergence.png" "$tmp/conv/convergence.csv=dG(1)" || fail=1
 $charts goal-values "$tmp/png/goals.png" "$tmp/hemker" || fail=1
+$charts compare-cut "$tmp/png/compare.png" normal -1 "$tmp/hemker=a" "$tmp/hemker=b" || fail=1
 $charts mesh "$tmp/png/mesh_u.png" "$tmp/hemker" 2 u -1.5 1.5 -1.5 1.5 || fail=1
 for f in hemker_history hemker_mesh_0002 hemker_cutlines hump_history work_precision \
-  convergence goals mesh_u; do
+  convergence goals mesh_u compare; do
   png="$tmp/png/$f.png"
   if [ -s "$png" ] && [ "$(head -c 4 "$png" | tail -c 3)" = PNG ] && [ "$(stat -c %s "$png")" -gt 5000 ]; then
     echo "ok: $f.png ($(stat -c %s "$png") bytes)"
