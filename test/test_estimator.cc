@@ -96,9 +96,11 @@ struct Problem
   std::unique_ptr<Space<2>> galerkin, supg;
   TemporalBasis basis;
   TimeMesh mesh;
-  Problem(unsigned int p, unsigned int r)
+  /// `variant` poly_space: b, alpha depend on t; constant: they do not (the estimator
+  /// then applies A and S' through cell matrices).
+  Problem(unsigned int p, unsigned int r, const std::string &variant = "poly_space")
       : scene(create_scene<2>(Parameters::from_overrides({"scene.name=manufactured",
-                                                          "scene.variant=poly_space",
+                                                          "scene.variant=" + variant,
                                                           "scene.epsilon=0.5"}))),
         basis(r), mesh(TimeMesh::uniform(0.6, 2))
   {
@@ -143,9 +145,14 @@ TEST_P(Localization, PrimalResidualAndSupgSumToGlobalForms)
   }
 }
 
-TEST_P(Localization, AdjointFormsSumToGlobalForms)
+class AdjointLocalization
+    : public ::testing::TestWithParam<std::tuple<unsigned int, const char *>>
 {
-  Problem s(1, GetParam());
+};
+
+TEST_P(AdjointLocalization, AdjointFormsSumToGlobalForms)
+{
+  Problem s(1, std::get<0>(GetParam()), std::get<1>(GetParam()));
   const unsigned int m = s.basis.n_dofs(), N = s.mesh.n_slabs();
   const auto V = random_function(*s.galerkin, m, N, 3),
              Z = random_function(*s.galerkin, m, N, 4);
@@ -166,3 +173,6 @@ TEST_P(Localization, AdjointFormsSumToGlobalForms)
 }
 
 INSTANTIATE_TEST_SUITE_P(TemporalDegree, Localization, ::testing::Values(0u, 1u, 2u));
+INSTANTIATE_TEST_SUITE_P(TemporalDegreeAndCoefficients, AdjointLocalization,
+                         ::testing::Combine(::testing::Values(0u, 1u, 2u),
+                                            ::testing::Values("poly_space", "constant")));

@@ -27,11 +27,21 @@ struct SlabFunctional
 {
   std::vector<Vector<double>> val, dt;
   Vector<double> jump;
+  /// Zeroes the functional; reallocates only when the sizes change.
   void reset(unsigned int n_points, unsigned int n)
   {
-    val.assign(n_points, Vector<double>(n));
-    dt.assign(n_points, Vector<double>(n));
-    jump.reinit(n);
+    if (val.size() != n_points || jump.size() != n)
+    {
+      val.assign(n_points, Vector<double>(n));
+      dt.assign(n_points, Vector<double>(n));
+      jump.reinit(n);
+      return;
+    }
+    for (auto &v : val)
+      v = 0.;
+    for (auto &v : dt)
+      v = 0.;
+    jump = 0.;
   }
 };
 
@@ -52,14 +62,10 @@ double apply(const SlabFunctional &F, const SlabFunction &v, bool jump_of_v)
     if (v.dt.size())
       s += F.dt[m] * v.dt[m];
   }
-  if (jump_of_v)
-  {
-    Vector<double> j = v.plus;
-    if (v.minus.size())
-      j -= v.minus;
-    return s + F.jump * j;
-  }
-  return s + F.jump * v.plus;
+  s += F.jump * v.plus;
+  if (jump_of_v && v.minus.size())
+    s -= F.jump * v.minus;
+  return s;
 }
 
 /// The cell integrals of SPEC §5 on one cell and one slab.
@@ -85,7 +91,8 @@ public:
                  update_JxW_values),
         fs_w(primal.mapping(), fe_w, fquad, update_values),
         fn_p(primal.mapping(), fe_p, fquad, update_gradients | update_quadrature_points),
-        fns_p(primal.mapping(), fe_p, fquad, update_gradients | update_quadrature_points)
+        fns_p(primal.mapping(), fe_p, fquad, update_gradients | update_quadrature_points),
+        constant_coefficients(!scene.coefficients_depend_on_time())
   {
     gauss_rule(basis.n_dofs() + 1, g, omega);
     for (double s : g)
@@ -109,6 +116,8 @@ public:
     fv_p.reinit(cell);
     fv_w.reinit(typename Triangulation<dim>::cell_iterator(cell));
     delta = primal.delta(cell);
+    if (constant_coefficients)
+      build_adjoint_matrices();
     idx.resize(fe_p.n_dofs_per_cell());
     cell->get_dof_indices(idx);
     pieces.clear();
@@ -166,7 +175,9 @@ public:
     rho.reset(g.size(), nw);
     supg.reset(g.size(), nw);
     const double eps = scene.epsilon;
-    Vector<double> c(np), ct(np);
+    Vector<double> &c = scratch[0], &ct = scratch[1], &cn = scratch[2];
+    c.reinit(np, true);
+    ct.reinit(np, true);
     for (unsigned int m = 0; m < g.size(); ++m)
     {
       const double t = t0 + g[m] * tau, wt = tau * omega[m];
@@ -197,10 +208,9 @@ public:
       // faces: half flux jump (interior), Neumann mismatch, -eps d_n u (Dirichlet)
       for (const auto &pc : pieces)
       {
-        Vector<double> cn;
         if (pc.kind == 0)
         {
-          cn.reinit(np);
+          cn.reinit(np, true);
           combine(Un, pc.nb_dofs, ell[m], 1., cn);
         }
         for (unsigned int q = 0; q < pc.JxW.size(); ++q)
@@ -225,7 +235,9 @@ public:
       }
     }
     // temporal jump at t_{n-1}: u^+ - u^-
-    Vector<double> cp(np), cm(np);
+    Vector<double> &cp = scratch[0], &cm = scratch[1];
+    cp.reinit(np, true);
+    cm.reinit(np);
     combine(Un, idx, basis.left_trace(), 1., cp);
     if (Uprev)
       for (unsigned int l = 0; l < np; ++l)
@@ -252,6 +264,22 @@ public:
   {
     const unsigned int nw = fe_w.n_dofs_per_cell(), nq = quad.size();
     A.reset(g.size(), nw);
+    if (constant_coefficients)
+    {
+      // the same functional through the cell matrices: val = wt K z, dt = wt M z
+      const auto &Kc = supg ? adj_matrices[2] : adj_matrices[0],
+                 &Mc = supg ? adj_matrices[3] : adj_matrices[1];
+      for (unsigned int m = 0; m < g.size(); ++m)
+      {
+        const double wt = tau * omega[m];
+        Kc.vmult(A.val[m], zt.val[m]);
+        A.val[m] *= wt;
+        Mc.vmult(A.dt[m], zt.val[m]);
+        A.dt[m] *= wt;
+      }
+      Mc.vmult(A.jump, zt.plus);
+      return;
+    }
     const double eps = scene.epsilon;
     for (unsigned int m = 0; m <= g.size(); ++m) // m == g.size(): the jump at t_{n-1}^+
     {
@@ -393,6 +421,43 @@ private:
   double delta = 0;
   std::vector<types::global_dof_index> idx;
   std::vector<Piece> pieces;
+  mutable std::array<Vector<double>, 3> scratch; // cell-local coefficient buffers
+
+  /// For coefficients constant in time, A(.)(z) and S'(., z) are cell matrices applied
+  /// to z (per unit temporal weight): [0] A's val part, [1] A's dt/jump part, [2] S'
+  /// val part, [3] S' dt/jump part (rows: the first slot, columns: z).
+  const bool constant_coefficients;
+  std::array<FullMatrix<double>, 4> adj_matrices;
+  void build_adjoint_matrices()
+  {
+    const unsigned int nw = fe_w.n_dofs_per_cell(), nq = quad.size();
+    const double eps = scene.epsilon;
+    for (auto &M : adj_matrices)
+      M.reinit(nw, nw);
+    for (unsigned int q = 0; q < nq; ++q)
+    {
+      const Point<dim> &x = fv_p.quadrature_point(q);
+      const Tensor<1, dim> b = scene.convection(x, 0.);
+      const double alpha = scene.reaction(x, 0.), jx = fv_p.JxW(q);
+      for (unsigned int l = 0; l < nw; ++l)
+      {
+        const double phi = fv_w.shape_value(l, q);
+        const Tensor<1, dim> &gphi = fv_w.shape_grad(l, q);
+        const double op = -eps * trace(fv_w.shape_hessian(l, q)) + b * gphi + alpha * phi;
+        for (unsigned int j = 0; j < nw; ++j)
+        {
+          const double zj = fv_w.shape_value(j, q);
+          const Tensor<1, dim> &gz = fv_w.shape_grad(j, q);
+          const double test_s = delta * (b * gz);
+          adj_matrices[0](l, j) +=
+              jx * (eps * (gphi * gz) + (b * gphi + alpha * phi) * zj);
+          adj_matrices[1](l, j) += jx * phi * zj;
+          adj_matrices[2](l, j) += jx * op * test_s;
+          adj_matrices[3](l, j) += jx * phi * test_s;
+        }
+      }
+    }
+  }
 };
 
 /// W-local coefficients of temporal node k of an interleaved slab vector.
@@ -400,35 +465,37 @@ void gather(const Vector<double> &U, const std::vector<types::global_dof_index> 
             unsigned int m1, unsigned int k, const FullMatrix<double> &to_w,
             Vector<double> &out)
 {
-  Vector<double> loc(dofs.size());
+  thread_local Vector<double> loc;
+  loc.reinit(dofs.size(), true);
   for (unsigned int l = 0; l < dofs.size(); ++l)
     loc(l) = U(dofs[l] * m1 + k);
-  out.reinit(to_w.m());
+  out.reinit(to_w.m(), true);
   to_w.vmult(out, loc);
 }
 
-/// A slab function sum_k l_k(s) V_k from W-local nodal vectors V_k.
+/// f = the slab function sum_k l_k(s) V_k from W-local nodal vectors V_k (f.minus is
+/// left as it is; f's vectors are reused).
 template <int dim>
-SlabFunction slab_function(const CellKernel<dim> &kernel, const TemporalBasis &basis,
-                           double tau, const std::vector<Vector<double>> &V)
+void slab_function(const CellKernel<dim> &kernel, const TemporalBasis &basis, double tau,
+                   const std::vector<Vector<double>> &V, SlabFunction &f)
 {
-  SlabFunction f;
-  const unsigned int n = V[0].size();
-  for (unsigned int m = 0; m < kernel.n_points(); ++m)
+  const unsigned int n = V[0].size(), n_points = kernel.n_points();
+  f.val.resize(n_points);
+  f.dt.resize(n_points);
+  for (unsigned int m = 0; m < n_points; ++m)
   {
-    Vector<double> v(n), d(n);
+    Vector<double> &v = f.val[m], &d = f.dt[m];
+    v.reinit(n);
+    d.reinit(n);
     for (unsigned int k = 0; k < V.size(); ++k)
     {
       v.add(kernel.values_at(m)[k], V[k]);
       d.add(kernel.derivatives_at(m)[k] / tau, V[k]);
     }
-    f.val.push_back(v);
-    f.dt.push_back(d);
   }
   f.plus.reinit(n);
   for (unsigned int k = 0; k < V.size(); ++k)
     f.plus.add(basis.left_trace()[k], V[k]);
-  return f;
 }
 
 void transform(const FullMatrix<double> &R, SlabFunction &f)
@@ -437,7 +504,8 @@ void transform(const FullMatrix<double> &R, SlabFunction &f)
   {
     if (!v.size())
       return;
-    Vector<double> t(v.size());
+    thread_local Vector<double> t;
+    t.reinit(v.size(), true);
     R.vmult(t, v);
     v = t;
   };
@@ -449,9 +517,10 @@ void transform(const FullMatrix<double> &R, SlabFunction &f)
   one(f.minus);
 }
 
-SlabFunction difference(const SlabFunction &a, const SlabFunction &b)
+/// d = a - b (d's vectors are reused).
+void difference(const SlabFunction &a, const SlabFunction &b, SlabFunction &d)
 {
-  SlabFunction d = a;
+  d = a;
   for (unsigned int m = 0; m < d.val.size(); ++m)
   {
     d.val[m] -= b.val[m];
@@ -461,7 +530,6 @@ SlabFunction difference(const SlabFunction &a, const SlabFunction &b)
   d.plus -= b.plus;
   if (d.minus.size())
     d.minus -= b.minus;
-  return d;
 }
 
 template <int dim>
@@ -521,7 +589,8 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
 
   // E_tau at the temporal Gauss points (values [0] and derivatives [1]): the same
   // combinations for every cell and slab
-  std::vector<std::array<TimeCombination, 2>> E_z(kernel.n_points()), E_u(kernel.n_points());
+  std::vector<std::array<TimeCombination, 2>> E_z(kernel.n_points()),
+      E_u(kernel.n_points());
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
     for (unsigned int d = 0; d < 2; ++d)
     {
@@ -531,6 +600,12 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
 
   std::vector<types::global_dof_index> idx_q(adjoint.finite_element().n_dofs_per_cell());
   SlabFunctional rho, supg, A_rh, S_rh, A_z, Jf;
+  // buffers reused over cells and slabs (the loop body allocates nothing once sized)
+  std::vector<Vector<double>> zk(m1), uk(m1), vk(m1);
+  Vector<double> z_next(nw), u_prev(nw), tmp(nw), vT(nw), vz(nw), vu(nw);
+  SlabFunction z, u, Rhz, Riz, dz, v, ez, eu;
+  std::vector<LocalMap> lift(dim);
+  Vector<double> jt, jT;
   for (const auto &cell : primal.dof_handler().active_cell_iterators())
   {
     kernel.reinit(cell);
@@ -538,10 +613,8 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
     typename DoFHandler<dim>::active_cell_iterator cq(&tria, cell->level(), cell->index(),
                                                       &adjoint.dof_handler());
     cq->get_dof_indices(idx_q);
-    std::vector<LocalMap> lift(dim);
     for (unsigned int i = 0; i < dim; ++i)
       lift[i] = ops.directional_lift(cell, i);
-    Vector<double> jt, jT;
     if (!goal_t.empty())
       goal_t.cell_vector(cell, jt);
     if (!goal_T.empty())
@@ -556,37 +629,34 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       kernel.primal_functionals(t0, tau, U[n], n ? &U[n - 1] : nullptr, rho, supg);
 
       // adjoint: z on the slab, z(t_n^+)
-      std::vector<Vector<double>> zk(m1), uk(m1);
       for (unsigned int k = 0; k < m1; ++k)
       {
         gather(Z[n], idx_q, m1, k, Q, zk[k]);
         gather(U[n], idx, m1, k, P, uk[k]);
       }
-      Vector<double> z_next(nw);
+      z_next = 0.;
       if (n + 1 < N)
         for (unsigned int k = 0; k < m1; ++k)
         {
-          Vector<double> t;
-          gather(Z[n + 1], idx_q, m1, k, Q, t);
-          z_next.add(basis.left_trace()[k], t);
+          gather(Z[n + 1], idx_q, m1, k, Q, tmp);
+          z_next.add(basis.left_trace()[k], tmp);
         }
       else if (zT.size())
         gather(zT, idx_q, 1, 0, Q, z_next);
-      Vector<double> u_prev(nw);
       if (n > 0)
         gather(U[n - 1], idx, m1, m1 - 1, P, u_prev);
       else
         gather(u0, idx, 1, 0, P, u_prev);
 
-      const SlabFunction z = slab_function(kernel, basis, tau, zk);
-      SlabFunction Rhz = z;
+      slab_function(kernel, basis, tau, zk, z);
+      Rhz = z;
       transform(ops.restriction(dim), Rhz);
       kernel.adjoint_functional(t0, tau, Rhz, false, A_rh);
       kernel.adjoint_functional(t0, tau, Rhz, true, S_rh);
       kernel.adjoint_functional(t0, tau, z, false, A_z);
       kernel.goal_functional(tau, jt, Jf);
       const bool last = n + 1 == N;
-      const SlabFunction u = slab_function(kernel, basis, tau, uk);
+      slab_function(kernel, basis, tau, uk, u);
       // S(u)(R_h z): with z_h = R_h z in the primal space, J(e) = rho(u)(z - z_h) +
       // S(u)(z_h) and J(e) = rho*(z_h)(u - u_h) + S(u)(z_h) hold exactly, so the
       // average of the two carries the full SUPG consistency term.
@@ -595,18 +665,18 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       // eta_h,i
       for (unsigned int i = 0; i < dim; ++i)
       {
-        SlabFunction Riz = z;
+        Riz = z;
         transform(ops.restriction(i), Riz);
-        double eta = 0.5 * apply(rho, difference(z, Riz), false);
+        difference(z, Riz, dz);
+        double eta = 0.5 * apply(rho, dz, false);
         if (lift[i].exists)
         {
-          std::vector<Vector<double>> vk(m1);
           for (unsigned int k = 0; k < m1; ++k)
           {
             lift[i].apply(U[n], vk[k], m1, k);
             vk[k] -= uk[k];
           }
-          SlabFunction v = slab_function(kernel, basis, tau, vk);
+          slab_function(kernel, basis, tau, vk, v);
           for (const auto &vv : v.val)
             lift_size[i] += tau * vv.norm_sqr();
           if (n > 0)
@@ -614,10 +684,12 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
             lift[i].apply(U[n - 1], v.minus, m1, m1 - 1);
             v.minus -= u_prev;
           }
+          else
+            v.minus.reinit(0);
           double jv = apply(Jf, v, false); // J' over I
           if (last && jT.size())
           {
-            Vector<double> vT(nw);
+            vT = 0.;
             for (unsigned int k = 0; k < m1; ++k)
               vT.add(basis.right_trace()[k], vk[k]);
             jv += jT * vT;
@@ -629,13 +701,17 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       }
 
       // eta_tau: E z - z (outside value z(t_n^+)), E u - u (outside value u(t_{n-1}^-))
-      SlabFunction ez, eu;
+      ez.val.resize(kernel.n_points());
+      ez.dt.resize(kernel.n_points());
+      eu.val.resize(kernel.n_points());
+      eu.dt.resize(kernel.n_points());
       for (unsigned int m = 0; m < kernel.n_points(); ++m)
       {
         for (bool deriv : {false, true})
         {
           const TimeCombination &a = E_z[m][deriv], &b = E_u[m][deriv];
-          Vector<double> vz(nw), vu(nw);
+          vz = 0.;
+          vu = 0.;
           vz.add(a.outside, z_next);
           vu.add(b.outside, u_prev);
           for (unsigned int k = 0; k < m1; ++k)
@@ -649,15 +725,15 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
             vu /= tau;
             vz -= z.dt[m];
             vu -= u.dt[m];
-            ez.dt.push_back(vz);
-            eu.dt.push_back(vu);
+            ez.dt[m] = vz;
+            eu.dt[m] = vu;
           }
           else
           {
             vz -= z.val[m];
             vu -= u.val[m];
-            ez.val.push_back(vz);
-            eu.val.push_back(vu);
+            ez.val[m] = vz;
+            eu.val[m] = vu;
           }
         }
       }
@@ -720,7 +796,9 @@ SlabFunction other_function(const CellKernel<dim> &kernel, const TemporalBasis &
   std::vector<Vector<double>> vk(basis.n_dofs());
   for (unsigned int k = 0; k < basis.n_dofs(); ++k)
     gather(V, idx, basis.n_dofs(), k, to_w, vk[k]);
-  return slab_function(kernel, basis, tau, vk);
+  SlabFunction f;
+  slab_function(kernel, basis, tau, vk, f);
+  return f;
 }
 } // namespace
 
