@@ -45,6 +45,16 @@ def split_label(arg):
     return path, (label or os.path.basename(os.path.normpath(path)))
 
 
+def finish(fig, ax, out, xlabel, ylabel, legend_size=8, dpi=110):
+    """Labels, grid and legend of a single-axes chart, then writes it."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=legend_size)
+    fig.tight_layout()
+    fig.savefig(out, dpi=dpi)
+
+
 def cumulative_time(rows):
     total, out = 0.0, []
     for r in rows:
@@ -86,12 +96,7 @@ def goal_values(out, runs):
         for key in [k for k in rows[0] if k.startswith("J_")]:
             ax.semilogx([r["N_tot"] for r in rows], [r[key] for r in rows], "o-", ms=3,
                         label=f"{label}: {key[2:]}")
-    ax.set_xlabel("$N_{tot}$")
-    ax.set_ylabel("$J_i(u_{\\tau h})$")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    finish(fig, ax, out, "$N_{tot}$", "$J_i(u_{\\tau h})$")
 
 
 def history(out, run):
@@ -134,12 +139,7 @@ def convergence(out, tables):
                 order = rows[-1].get("order_" + key[4:], math.nan)
                 ax.loglog(xs, ys, "o-", ms=3, label=f"{label} {key} (order {order:.2f})")
                 break
-    ax.set_xlabel("h or $\\tau$")
-    ax.set_ylabel("error")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    finish(fig, ax, out, "h or $\\tau$", "error", legend_size=7)
 
 
 def loop_files(run, pattern):
@@ -211,12 +211,7 @@ def compare_cut(out, line, loop, runs):
         ax.plot([r["s"] for r in rows], [r["u"] for r in rows], "-", lw=1, label=f"{label} (loop {chosen})")
     ax.axhline(0, color="k", lw=0.5)
     ax.axhline(1, color="k", lw=0.5)
-    ax.set_xlabel(f"s along cut line {line}")
-    ax.set_ylabel("$u_h(T)$")
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    finish(fig, ax, out, f"s along cut line {line}", "$u_h(T)$")
 
 
 def all_charts(outdir, runs):
