@@ -24,7 +24,7 @@ run() { # scene name config --set ...
   local start=$SECONDS
   if ! "$BUILD/app/anisodwr" run "$ROOT/config/$config" --output "$dir" \
     --set adaptivity.loops="$LOOPS" --set adaptivity.max_dofs="$MAX_DOFS" \
-    --set output.vtu_loops=100 "$@" >"$dir.log" 2>&1; then
+    --set output.vtu_loops=1 "$@" >"$dir.log" 2>&1; then
     echo "run $scene/$name FAILED (exit code $?): see $dir.log" >&2
   fi
   echo "$scene/$name: $((SECONDS - start)) s" >&2

@@ -122,7 +122,8 @@ std::vector<Entry> make_entries()
       {"adaptivity", "max_dofs", "0", Kind::real, real(0.),
        "Stop before a loop whose N_tot would exceed this (0: no budget)."},
       {"adaptivity", "max_memory_mb", "0", Kind::real, real(0.),
-       "Stop when the peak memory exceeds this many MB (0: no budget)."},
+       "Memory budget in MB (0: none): no new loop starts when the peak memory so far "
+       "times the last loop's growth of N_tot would exceed it."},
       {"adaptivity", "max_wall_time", "0", Kind::real, real(0.),
        "Wall-time budget in seconds (0: none): no new loop starts when the time so far "
        "plus twice the last loop's time would exceed it."},

@@ -440,8 +440,11 @@ void run_dwr(const Parameters &prm)
         stop = true;
         stop_reason = "tolerance";
       }
-      else if (prm.max_memory_mb > 0 && peak_memory_mb() > prm.max_memory_mb)
+      else if (prm.max_memory_mb > 0 &&
+               peak_memory_mb() * (rows.empty() ? 1. : row.n_tot / rows.back().n_tot) >
+                   prm.max_memory_mb)
       {
+        // the next loop's peak is predicted from this one's and the last DoF growth
         stop = true;
         stop_reason = "memory budget";
       }
