@@ -166,7 +166,9 @@ def mesh(out, run, loop, field="aspect_ratio", window=None):
         norm = LogNorm(max(min(pos), max(pos) * 1e-8), max(pos)) if pos else Normalize()
         values = [max(v, norm.vmin) for v in values]
     fig, ax = plt.subplots(figsize=(8, 4.8))
-    pc = PolyCollection(polys, array=values, cmap="viridis", norm=norm, edgecolors="k",
+    # cell edges hide the colours of large meshes: drawn only below 20000 cells
+    pc = PolyCollection(polys, array=values, cmap="viridis", norm=norm,
+                        edgecolors="k" if len(polys) < 20000 else "face",
                         linewidths=0.1 if len(polys) > 2000 else 0.3, rasterized=True)
     ax.add_collection(pc)
     ax.autoscale_view()
@@ -175,7 +177,8 @@ def mesh(out, run, loop, field="aspect_ratio", window=None):
         ax.set_xlim(window[0], window[1])
         ax.set_ylim(window[2], window[3])
     fig.colorbar(pc, ax=ax, label=field, shrink=0.8)
-    ax.set_title(f"{run}: loop {int(loop)}, {len(polys)} cells, coloured by {field}")
+    ax.set_title(f"{os.path.basename(os.path.normpath(run))}: loop {int(loop)}, {len(polys)} cells, "
+                 f"coloured by {field}")
     fig.tight_layout()
     fig.savefig(out, dpi=130)
 

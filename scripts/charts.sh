@@ -21,6 +21,7 @@ chart history "$OUT/hemker_history.png" "$H"
 chart goal-values "$OUT/hemker_goals.png" "$H=aniso 30 min" "$S/hemker_isotropic=iso"
 chart mesh "$OUT/hemker_mesh.png" "$H" -1 aspect_ratio
 chart mesh "$OUT/hemker_mesh_zoom.png" "$H" -1 u -1.6 0.2 -0.2 1.6
+chart mesh "$OUT/hemker_mesh_zoom_ar.png" "$H" -1 aspect_ratio -1.2 0.4 0.5 1.2
 chart cutlines "$OUT/hemker_cutlines.png" "$H" 2,6,-1
 chart compare-cut "$OUT/hemker_galerkin_supg.png" normal -1 "$S/hemker_uniform_delta0=Galerkin" \
   "$S/hemker_uniform_delta0.1=SUPG 0.1" "$S/hemker_uniform_delta1=SUPG 1"
