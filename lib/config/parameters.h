@@ -29,6 +29,14 @@ struct Parameters
   // [solver]
   std::string solver_type = "direct";
   bool reuse_factorization = true;
+  double solver_auto_min_dofs = 2e5;
+  std::string krylov = "gmres";
+  std::string preconditioner = "kronecker";
+  double solver_tolerance = 1e-10;
+  unsigned int restart = 30;
+  unsigned int max_iterations = 500;
+  double ilu_fill = 1.;
+  std::string fallback = "none";
 
   // [study]
   std::string mode = "single";

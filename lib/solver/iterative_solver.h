@@ -1,0 +1,76 @@
+#pragma once
+// Krylov solvers (Trilinos Belos) with Ifpack2 / Kronecker preconditioners for the
+// condensed slab matrix K (interleaved ordering i*(r+1)+k, point blocks of size r+1).
+//
+// All Trilinos types live in iterative_solver.cc (pimpl); this header needs deal.II only.
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace anisodwr
+{
+/// Krylov method, preconditioner and stopping rule (config section solver).
+struct IterativeOptions
+{
+  std::string krylov = "gmres";             ///< gmres | fgmres | bicgstab
+  std::string preconditioner = "kronecker"; ///< see preconditioner_names()
+  double tolerance = 1e-10;                 ///< on ||b - K x|| / ||b||
+  unsigned int restart = 30;                ///< GMRES restart length
+  unsigned int max_iterations = 500;
+  double ilu_fill = 1.;  ///< RILUK/RBILUK level of fill (rounded), ILUT fill ratio
+  double ilut_drop = 0.; ///< ILUT drop tolerance
+};
+
+/// "none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker"
+const char *preconditioner_names();
+
+/// K = T1 (x) S1 + T2 (x) S2 (Kronecker factors in the interleaved ordering, T2
+/// invertible, S1 and S2 on one sparsity pattern): the input of the Kronecker
+/// preconditioner. For the slab operator: T1 = D, S1 = Mc, T2 = tau Mhat, S2 = Ac.
+struct KronSplit
+{
+  dealii::FullMatrix<double> T1, T2;
+  const dealii::SparseMatrix<double> *S1 = nullptr, *S2 = nullptr;
+};
+
+/// A Krylov solve that did not reach the tolerance (or broke down).
+class KrylovFailure : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct KrylovStats
+{
+  unsigned int iterations = 0;
+  double residual = 0; ///< achieved ||b - K x|| / ||b||
+};
+
+class IterativeSlabSolver
+{
+public:
+  explicit IterativeSlabSolver(const IterativeOptions &options);
+  ~IterativeSlabSolver();
+
+  /// Copies K (or K^T if `transpose`) into Tpetra and builds the preconditioner.
+  /// `m` = r+1 is the temporal block size; `kron` is needed by "kronecker" only
+  /// (it is transposed here as well if `transpose`).
+  void setup(const dealii::SparseMatrix<double> &K, unsigned int m, const KronSplit *kron,
+             bool transpose);
+
+  /// Solves (the set-up matrix) x = b; x holds the initial guess on entry.
+  /// Throws KrylovFailure naming the solver, preconditioner, iterations and residual.
+  KrylovStats solve(const dealii::Vector<double> &b, dealii::Vector<double> &x) const;
+
+  /// "gmres+kronecker" etc.
+  std::string name() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+};
+} // namespace anisodwr
