@@ -100,7 +100,8 @@ INSTANTIATE_TEST_SUITE_P(
                        // "none" is left out: unpreconditioned BiCGStab stagnates on the
                        // r = 2 adjoint system (residual 0.76 after 3000 iterations).
                        ::testing::Values("ilut", "riluk", "block_jacobi",
-                                         "block_gauss_seidel", "block_ilu", "kronecker"),
+                                         "block_gauss_seidel", "block_ilu", "kronecker",
+                                         "kronecker_presb"),
                        ::testing::Values(0u, 1u, 2u), ::testing::Bool()),
     [](const auto &info)
     {

@@ -82,7 +82,8 @@ std::vector<Entry> make_entries()
        "Iterative solver: gmres (restarted, right preconditioned), fgmres (flexible) or "
        "bicgstab (Belos)."},
       {"solver", "preconditioner", "kronecker", Kind::text,
-       choice("none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker"),
+       choice("none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker|"
+              "kronecker_presb"),
        "Preconditioner (Ifpack2 unless noted): ilut / riluk = ILUT / ILU(k) of the whole "
        "slab matrix; block_jacobi / block_gauss_seidel = one sweep of block relaxation "
        "with the (r+1)x(r+1) temporal blocks; block_ilu = block ILU(k) (RBILUK) with "

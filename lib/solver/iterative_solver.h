@@ -25,7 +25,7 @@ struct IterativeOptions
   double ilut_drop = 0.; ///< ILUT drop tolerance
 };
 
-/// "none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker"
+/// "none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker|kronecker_presb"
 const char *preconditioner_names();
 
 /// K = T1 (x) S1 + T2 (x) S2 (Kronecker factors in the interleaved ordering, T2
