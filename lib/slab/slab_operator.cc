@@ -55,8 +55,19 @@ template <int dim>
 SlabOperator<dim>::~SlabOperator() = default;
 
 template <int dim>
+void SlabOperator<dim>::assemble_matrix()
+{
+  Timer timer;
+  assemble_kron(terms_cond, pattern, K);
+  k_assembled = true;
+  time.assemble_slab += timer.wall_time();
+}
+
+template <int dim>
 void SlabOperator<dim>::factorize()
 {
+  if (!k_assembled)
+    assemble_matrix();
   Timer timer;
   lu.factorize(K);
   time.factorize += timer.wall_time();
@@ -126,14 +137,16 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     kron = {basis.derivative_with_jump(), tM, &mid.Mc, &mid.Ac};
   }
   time.assemble_spatial += timer.wall_time();
-  timer.restart();
-  assemble_kron(terms_cond, pattern, K);
-  time.assemble_slab += timer.wall_time();
   use_iterative = opt.type == "iterative" ||
                   (opt.type == "auto" && double(n_slab_dofs()) >= opt.auto_min_dofs);
   krylov[0].reset();
   krylov[1].reset();
   lu_valid = false;
+  // The kronecker preconditioners work matrix-free: K is assembled only if needed.
+  K.clear();
+  k_assembled = false;
+  if (!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative))
+    assemble_matrix();
   if (!use_iterative)
     factorize();
   factorized = true;
@@ -198,7 +211,12 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
   {
     Timer timer;
     auto solver = std::make_unique<IterativeSlabSolver>(opt.iterative);
-    solver->setup(K, basis.n_dofs(), &kron, transpose);
+    SlabMatrix matrix;
+    matrix.assembled = k_assembled ? &K : nullptr;
+    matrix.terms = &terms_cond;
+    matrix.m = basis.n_dofs();
+    matrix.split = &kron;
+    solver->setup(matrix, transpose);
     krylov[d] = std::move(solver);
     setup_time = timer.wall_time();
     time.precondition += setup_time;

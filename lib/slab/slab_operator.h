@@ -92,8 +92,6 @@ public:
 
   const SlabTimings &timings() const { return time; }
   dealii::types::global_dof_index n_slab_dofs() const { return space.n_dofs() * basis.n_dofs(); }
-  /// The condensed slab matrix of the last prepare() (for tests and benchmarks).
-  const dealii::SparseMatrix<double> &condensed_matrix() const { return K; }
   /// True if the last prepare() chose the iterative path.
   bool iterative() const { return use_iterative; }
 
@@ -114,8 +112,9 @@ private:
   KronSplit kron;
   std::unique_ptr<IterativeSlabSolver> krylov[2]; // [transpose]
   dealii::Vector<double> guess[2];
-  bool lu_valid = false;
-  void factorize();
+  bool lu_valid = false, k_assembled = false;
+  void assemble_matrix();
+  void factorize(); ///< assembles K first if the iterative path skipped it
   /// Krylov solve in place (rhs -> solution); returns the time spent on setup.
   double solve_iterative(dealii::Vector<double> &rhs, bool transpose);
   double t0 = 0, tau = -1;

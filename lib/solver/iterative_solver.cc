@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <sstream>
 
@@ -413,6 +414,95 @@ private:
   std::vector<RCP<Vec>> y, z;
   RCP<Vec> w1, w2, h;
 };
+/// Matrix-free K = sum_t T_t (x) S_t (or K^T): m spatial products per term.
+class KroneckerOperator : public OP
+{
+public:
+  KroneckerOperator(const RCP<const Map> &slab_map, const std::vector<KronTerm> &terms,
+                    bool transpose)
+      : slab_map(slab_map)
+  {
+    m = terms.at(0).T.m();
+    space_map = rcp(
+        new Map(static_cast<Tpetra::global_size_t>(terms[0].S->m()), 0, serial_comm()));
+    std::map<const dealii::SparseMatrix<double> *, RCP<Matrix>> converted;
+    for (const auto &t : terms)
+    {
+      Term term;
+      term.T.reinit(m, m);
+      for (unsigned int i = 0; i < m; ++i)
+        for (unsigned int j = 0; j < m; ++j)
+          term.T(i, j) = transpose ? t.T(j, i) : t.T(i, j);
+      auto &S = converted[t.S];
+      if (S.is_null())
+        S = to_tpetra(space_map, *t.S, 1., nullptr, 0., transpose);
+      term.S = S;
+      this->terms.push_back(term);
+    }
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      xs.push_back(rcp(new Vec(space_map)));
+      ys.push_back(rcp(new Vec(space_map)));
+      sx.push_back(rcp(new Vec(space_map)));
+    }
+  }
+
+  RCP<const Map> getDomainMap() const override { return slab_map; }
+  RCP<const Map> getRangeMap() const override { return slab_map; }
+
+  void apply(const MV &X, MV &Y, Teuchos::ETransp mode = Teuchos::NO_TRANS,
+             double alpha = 1., double beta = 0.) const override
+  {
+    if (mode != Teuchos::NO_TRANS)
+      throw std::logic_error("Kronecker operator: transposed apply not implemented");
+    const std::size_t n = space_map->getNodeNumElements();
+    for (std::size_t c = 0; c < X.getNumVectors(); ++c)
+    {
+      {
+        auto x = X.getData(c);
+        for (unsigned int k = 0; k < m; ++k)
+        {
+          auto xk = xs[k]->getDataNonConst();
+          for (std::size_t i = 0; i < n; ++i)
+            xk[i] = x[i * m + k];
+        }
+      }
+      for (unsigned int k = 0; k < m; ++k)
+        ys[k]->putScalar(0.);
+      for (const auto &t : terms)
+        for (unsigned int l = 0; l < m; ++l)
+        {
+          bool used = false;
+          for (unsigned int k = 0; k < m; ++k)
+            used = used || t.T(k, l) != 0.;
+          if (!used)
+            continue;
+          t.S->apply(*xs[l], *sx[l]);
+          for (unsigned int k = 0; k < m; ++k)
+            if (t.T(k, l) != 0.)
+              ys[k]->update(t.T(k, l), *sx[l], 1.);
+        }
+      auto y = Y.getDataNonConst(c);
+      for (unsigned int k = 0; k < m; ++k)
+      {
+        auto yk = ys[k]->getData();
+        for (std::size_t i = 0; i < n; ++i)
+          y[i * m + k] = (beta == 0. ? 0. : beta * y[i * m + k]) + alpha * yk[i];
+      }
+    }
+  }
+
+private:
+  struct Term
+  {
+    dealii::FullMatrix<double> T;
+    RCP<Matrix> S;
+  };
+  unsigned int m = 1;
+  RCP<const Map> slab_map, space_map;
+  std::vector<Term> terms;
+  std::vector<RCP<Vec>> xs, ys, sx;
+};
 } // namespace
 
 const char *preconditioner_names()
@@ -425,7 +515,8 @@ struct IterativeSlabSolver::Impl
 {
   IterativeOptions o;
   RCP<const Map> map;
-  RCP<Matrix> K;
+  RCP<Matrix> K; // assembled K (null if matrix-free)
+  RCP<OP> op;    // K or the Kronecker operator
   RCP<OP> prec;
   RCP<RowMatrix> block_matrix; // block_ilu: K as BlockCrsMatrix
 };
@@ -443,24 +534,41 @@ std::string IterativeSlabSolver::name() const
   return impl->o.krylov + "+" + impl->o.preconditioner;
 }
 
-void IterativeSlabSolver::setup(const dealii::SparseMatrix<double> &K, unsigned int m,
-                                const KronSplit *kron, bool transpose)
+bool IterativeSlabSolver::needs_assembled_matrix(const IterativeOptions &o)
+{
+  return o.preconditioner != "kronecker" && o.preconditioner != "kronecker_presb" &&
+         o.preconditioner != "none";
+}
+
+void IterativeSlabSolver::setup(const SlabMatrix &K, bool transpose)
 {
   auto &d = *impl;
   d.prec = Teuchos::null;
   d.block_matrix = Teuchos::null;
   d.K = Teuchos::null;
-  d.map = rcp(new Map(static_cast<Tpetra::global_size_t>(K.m()), 0, serial_comm()));
-  d.K = to_tpetra(d.map, K, 1., nullptr, 0., transpose);
+  d.op = Teuchos::null;
+  const unsigned int m = K.m;
+  const std::size_t N = K.assembled ? K.assembled->m() : K.terms->at(0).S->m() * m;
+  d.map = rcp(new Map(static_cast<Tpetra::global_size_t>(N), 0, serial_comm()));
+  if (K.assembled)
+  {
+    d.K = to_tpetra(d.map, *K.assembled, 1., nullptr, 0., transpose);
+    d.op = d.K;
+  }
+  else if (K.terms && !needs_assembled_matrix(d.o))
+    d.op = rcp(new KroneckerOperator(d.map, *K.terms, transpose));
+  else
+    throw std::logic_error("IterativeSlabSolver: preconditioner " + d.o.preconditioner +
+                           " needs the assembled slab matrix");
   const std::string &p = d.o.preconditioner;
-  const LO n_blocks = static_cast<LO>(K.m() / m);
+  const LO n_blocks = static_cast<LO>(N / m);
   if (p == "none")
     return;
   if (p == "kronecker" || p == "kronecker_presb")
   {
-    if (!kron)
+    if (!K.split)
       throw std::logic_error("kronecker preconditioner needs the Kronecker split of K");
-    d.prec = rcp(new KroneckerPreconditioner(d.map, *kron, transpose, d.o));
+    d.prec = rcp(new KroneckerPreconditioner(d.map, *K.split, transpose, d.o));
   }
   else if (p == "block_ilu")
   {
@@ -497,7 +605,7 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
       xd[i] = x[i];
     }
   }
-  auto problem = rcp(new Belos::LinearProblem<double, MV, OP>(d.K, X, B));
+  auto problem = rcp(new Belos::LinearProblem<double, MV, OP>(d.op, X, B));
   if (!d.prec.is_null())
     problem->setRightPrec(d.prec);
   problem->setProblem();
@@ -533,7 +641,7 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
   stats.iterations = static_cast<unsigned int>(solver->getNumIters());
   // True residual of the returned iterate.
   MV R(d.map, 1);
-  d.K->apply(*X, R);
+  d.op->apply(*X, R);
   R.update(1., *B, -1.);
   Teuchos::Array<double> rn(1);
   R.norm2(rn());

@@ -7,6 +7,8 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include "slab/kronecker.h"
+
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -50,17 +52,28 @@ struct KrylovStats
   double residual = 0; ///< achieved ||b - K x|| / ||b||
 };
 
+/// The slab matrix: assembled (`assembled`), or matrix-free as the Kronecker sum `terms`
+/// (used when `assembled` is null; enough for the kronecker preconditioners and none).
+struct SlabMatrix
+{
+  const dealii::SparseMatrix<double> *assembled = nullptr;
+  const std::vector<KronTerm> *terms = nullptr;
+  unsigned int m = 1;               ///< temporal block size r+1
+  const KronSplit *split = nullptr; ///< for the kronecker preconditioners
+};
+
 class IterativeSlabSolver
 {
 public:
   explicit IterativeSlabSolver(const IterativeOptions &options);
   ~IterativeSlabSolver();
 
-  /// Copies K (or K^T if `transpose`) into Tpetra and builds the preconditioner.
-  /// `m` = r+1 is the temporal block size; `kron` is needed by "kronecker" only
-  /// (it is transposed here as well if `transpose`).
-  void setup(const dealii::SparseMatrix<double> &K, unsigned int m, const KronSplit *kron,
-             bool transpose);
+  /// True if the preconditioner needs K assembled (all but kronecker*, none).
+  static bool needs_assembled_matrix(const IterativeOptions &options);
+
+  /// Copies K (or K^T if `transpose`) into Tpetra, assembled or as Kronecker terms, and
+  /// builds the preconditioner (from K.split for kronecker*, transposed here as well).
+  void setup(const SlabMatrix &K, bool transpose);
 
   /// Solves (the set-up matrix) x = b; x holds the initial guess on entry.
   /// Throws KrylovFailure naming the solver, preconditioner, iterations and residual.
