@@ -193,3 +193,27 @@ TEST(Iterative, NonConvergenceThrowsOrFallsBack)
   EXPECT_EQ(fallback.timings().n_factorizations, 1u);
 }
 } // namespace
+
+namespace
+{
+TEST(Iterative, AutoPicksBySlabSize)
+{
+  SlabProblem s("moving_hump", "", 1, 1e-6);
+  const TemporalBasis basis(1);
+  SlabSolverOptions o;
+  o.type = "auto";
+  o.auto_min_dofs = 2. * s.space->n_dofs(); // = N_space (r+1): iterative
+  SlabOperator<2> big(*s.space, basis, o);
+  big.prepare(0., 0.05);
+  EXPECT_TRUE(big.iterative());
+  o.auto_min_dofs += 1;
+  SlabOperator<2> small(*s.space, basis, o);
+  small.prepare(0., 0.05);
+  EXPECT_FALSE(small.iterative());
+  EXPECT_EQ(small.timings().n_factorizations, 1u);
+  // The config default is auto with a threshold of 1e6 slab unknowns.
+  const Parameters prm = Parameters::from_overrides({});
+  EXPECT_EQ(prm.solver_type, "auto");
+  EXPECT_EQ(slab_solver_options(prm).auto_min_dofs, 1e6);
+}
+} // namespace

@@ -69,19 +69,21 @@ std::vector<Entry> make_entries()
        "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},
       {"discretization", "n_slabs", "5", Kind::integer, integer(1, 1000000),
        "Number of equal time slabs."},
-      {"solver", "type", "direct", Kind::text, choice("direct|iterative|auto"),
+      {"solver", "type", "auto", Kind::text, choice("direct|iterative|auto"),
        "Slab solver: direct (UMFPACK), iterative (Belos Krylov method solver.krylov "
        "with solver.preconditioner, Trilinos), or auto: iterative iff a slab system has "
        "at least solver.auto_min_dofs unknowns (N_space (r+1)), else direct."},
       {"solver", "reuse_factorization", "true", Kind::boolean, boolean,
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
        "unchanged (same tau, coefficients constant in time)."},
-      {"solver", "auto_min_dofs", "2e5", Kind::real, real(0.),
-       "solver.type = auto: smallest slab system size N_space (r+1) solved iteratively."},
+      {"solver", "auto_min_dofs", "1e6", Kind::real, real(0.),
+       "solver.type = auto: smallest slab system size N_space (r+1) solved iteratively "
+       "(README 'Slab solvers': beyond ~1e6 UMFPACK needs minutes and GBs per "
+       "factorization while gmres+kronecker_presb is faster and 3x smaller)."},
       {"solver", "krylov", "gmres", Kind::text, choice("gmres|fgmres|bicgstab"),
        "Iterative solver: gmres (restarted, right preconditioned), fgmres (flexible) or "
        "bicgstab (Belos)."},
-      {"solver", "preconditioner", "kronecker", Kind::text,
+      {"solver", "preconditioner", "kronecker_presb", Kind::text,
        choice("none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker|"
               "kronecker_presb"),
        "Preconditioner (Ifpack2 unless noted): ilut / riluk = ILUT / ILU(k) of the whole "

@@ -37,7 +37,7 @@ struct SlabSolverOptions
   std::string type = "direct"; ///< direct | iterative | auto
   bool reuse_factorization = true;
   /// auto: iterative iff the slab system has at least this many unknowns.
-  double auto_min_dofs = 2e5;
+  double auto_min_dofs = 1e6;
   std::string fallback = "none"; ///< none | direct
   IterativeOptions iterative;
 

@@ -19,7 +19,7 @@ namespace anisodwr
 struct IterativeOptions
 {
   std::string krylov = "gmres";             ///< gmres | fgmres | bicgstab
-  std::string preconditioner = "kronecker"; ///< see preconditioner_names()
+  std::string preconditioner = "kronecker_presb"; ///< see preconditioner_names()
   double tolerance = 1e-10;                 ///< on ||b - K x|| / ||b||
   unsigned int restart = 30;                ///< GMRES restart length
   unsigned int max_iterations = 500;
