@@ -202,11 +202,11 @@ TEST(Iterative, AutoPicksBySlabSize)
   const TemporalBasis basis(1);
   SlabSolverOptions o;
   o.type = "auto";
-  o.auto_min_dofs = 2. * s.space->n_dofs(); // = N_space (r+1): iterative
+  o.auto_threshold = 4. * s.space->n_dofs(); // = N_space (r+1)^2: iterative
   SlabOperator<2> big(*s.space, basis, o);
   big.prepare(0., 0.05);
   EXPECT_TRUE(big.iterative());
-  o.auto_min_dofs += 1;
+  o.auto_threshold += 1;
   SlabOperator<2> small(*s.space, basis, o);
   small.prepare(0., 0.05);
   EXPECT_FALSE(small.iterative());
@@ -214,6 +214,6 @@ TEST(Iterative, AutoPicksBySlabSize)
   // The config default is auto with a threshold of 1e6 slab unknowns.
   const Parameters prm = Parameters::from_overrides({});
   EXPECT_EQ(prm.solver_type, "auto");
-  EXPECT_EQ(slab_solver_options(prm).auto_min_dofs, 1e6);
+  EXPECT_EQ(slab_solver_options(prm).auto_threshold, 1e6);
 }
 } // namespace

@@ -71,15 +71,15 @@ std::vector<Entry> make_entries()
        "Number of equal time slabs."},
       {"solver", "type", "auto", Kind::text, choice("direct|iterative|auto"),
        "Slab solver: direct (UMFPACK), iterative (Belos Krylov method solver.krylov "
-       "with solver.preconditioner, Trilinos), or auto: iterative iff a slab system has "
-       "at least solver.auto_min_dofs unknowns (N_space (r+1)), else direct."},
+       "with solver.preconditioner, Trilinos), or auto: iterative iff N_space (r+1)^2 >= "
+       "solver.auto_threshold, else direct."},
       {"solver", "reuse_factorization", "true", Kind::boolean, boolean,
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
        "unchanged (same tau, coefficients constant in time)."},
-      {"solver", "auto_min_dofs", "1e6", Kind::real, real(0.),
-       "solver.type = auto: smallest slab system size N_space (r+1) solved iteratively "
-       "(README 'Slab solvers': beyond ~1e6 UMFPACK needs minutes and GBs per "
-       "factorization while gmres+kronecker_presb is faster and 3x smaller)."},
+      {"solver", "auto_threshold", "1e6", Kind::real, real(0.),
+       "solver.type = auto: iterative iff N_space (r+1)^2 (slab unknowns times the "
+       "temporal block size, which UMFPACK's cost follows) reaches this (README 'Slab "
+       "solvers': from there gmres+kronecker_presb is faster and 2-4x smaller)."},
       {"solver", "krylov", "gmres", Kind::text, choice("gmres|fgmres|bicgstab"),
        "Iterative solver: gmres (restarted, right preconditioned), fgmres (flexible) or "
        "bicgstab (Belos)."},
@@ -308,7 +308,7 @@ public:
     p.n_slabs = integer("discretization.n_slabs");
     p.solver_type = get("solver.type");
     p.reuse_factorization = boolean("solver.reuse_factorization");
-    p.solver_auto_min_dofs = real("solver.auto_min_dofs");
+    p.solver_auto_threshold = real("solver.auto_threshold");
     p.krylov = get("solver.krylov");
     p.preconditioner = get("solver.preconditioner");
     p.solver_tolerance = real("solver.tolerance");
@@ -457,7 +457,7 @@ std::string Parameters::to_json(unsigned int indent) const
       {"discretization.n_slabs", std::to_string(n_slabs)},
       {"solver.type", solver_type},
       {"solver.reuse_factorization", reuse_factorization ? "true" : "false"},
-      {"solver.auto_min_dofs", num(solver_auto_min_dofs)},
+      {"solver.auto_threshold", num(solver_auto_threshold)},
       {"solver.krylov", krylov},
       {"solver.preconditioner", preconditioner},
       {"solver.tolerance", num(solver_tolerance)},

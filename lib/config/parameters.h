@@ -29,7 +29,7 @@ struct Parameters
   // [solver]
   std::string solver_type = "auto";
   bool reuse_factorization = true;
-  double solver_auto_min_dofs = 1e6;
+  double solver_auto_threshold = 1e6;
   std::string krylov = "gmres";
   std::string preconditioner = "kronecker_presb";
   double solver_tolerance = 1e-10;

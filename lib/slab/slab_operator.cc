@@ -28,7 +28,7 @@ SlabSolverOptions slab_solver_options(const Parameters &prm)
   SlabSolverOptions o;
   o.type = prm.solver_type;
   o.reuse_factorization = prm.reuse_factorization;
-  o.auto_min_dofs = prm.solver_auto_min_dofs;
+  o.auto_threshold = prm.solver_auto_threshold;
   o.fallback = prm.fallback;
   o.iterative.krylov = prm.krylov;
   o.iterative.preconditioner = prm.preconditioner;
@@ -138,7 +138,8 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
   }
   time.assemble_spatial += timer.wall_time();
   use_iterative = opt.type == "iterative" ||
-                  (opt.type == "auto" && double(n_slab_dofs()) >= opt.auto_min_dofs);
+                  (opt.type == "auto" &&
+                   double(n_slab_dofs()) * basis.n_dofs() >= opt.auto_threshold);
   krylov[0].reset();
   krylov[1].reset();
   lu_valid = false;

@@ -36,8 +36,8 @@ struct SlabSolverOptions
 {
   std::string type = "direct"; ///< direct | iterative | auto
   bool reuse_factorization = true;
-  /// auto: iterative iff the slab system has at least this many unknowns.
-  double auto_min_dofs = 1e6;
+  /// auto: iterative iff N_space (r+1)^2 >= auto_threshold.
+  double auto_threshold = 1e6;
   std::string fallback = "none"; ///< none | direct
   IterativeOptions iterative;
 
