@@ -180,12 +180,16 @@ try:
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(1, 3, figsize=(15, 4.5))
+    ax[0].set_prop_cycle(color=plt.cm.tab20.colors)
+    ax[1].set_prop_cycle(color=plt.cm.tab20.colors)
+    ax[2].set_prop_cycle(color=plt.cm.tab20.colors)
     sel = [r for r in sweep if r["system"] == "primal" and r["p"] == "1" and r["status"] == "ok"]
     for name in sorted({r["name"] for r in sel}):
         pts = sorted((int(r["N_slab"]), r) for r in sel if r["name"] == name)
         x = [p[0] for p in pts]
-        ax[0].loglog(x, [p[1]["per_slab"] for p in pts], "o-", label=name)
-        ax[1].loglog(x, [f(p[1]["peak_mb"]) for p in pts], "o-", label=name)
+        style = dict(color="k", lw=2.5, ls="--") if name == "umfpack" else dict(ls="-")
+        ax[0].loglog(x, [p[1]["per_slab"] for p in pts], "o", label=name, **style)
+        ax[1].loglog(x, [f(p[1]["peak_mb"]) for p in pts], "o", label=name, **style)
         if name != "umfpack":
             ax[2].semilogx(x, [f(p[1]["iters_mean"]) for p in pts], "o-", label=name)
     ax[0].set(xlabel="slab unknowns N_space (r+1)", ylabel="s per slab (setup/10 + solve)",
