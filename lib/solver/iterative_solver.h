@@ -18,10 +18,10 @@ namespace anisodwr
 /// Krylov method, preconditioner and stopping rule (config section solver).
 struct IterativeOptions
 {
-  std::string krylov = "gmres";             ///< gmres | fgmres | bicgstab
+  std::string krylov = "gmres";                   ///< gmres | fgmres | bicgstab
   std::string preconditioner = "kronecker_presb"; ///< see preconditioner_names()
-  double tolerance = 1e-10;                 ///< on ||b - K x|| / ||b||
-  unsigned int restart = 30;                ///< GMRES restart length
+  double tolerance = 1e-10;                       ///< on ||b - K x|| / ||b||
+  unsigned int restart = 30;                      ///< GMRES restart length
   unsigned int max_iterations = 500;
   double ilu_fill = 1.;  ///< RILUK/RBILUK level of fill (rounded), ILUT fill ratio
   double ilut_drop = 0.; ///< ILUT drop tolerance
