@@ -81,7 +81,7 @@ TEST(Adjoint, TransposedSpaceTimeOperator)
   space.setup();
   const TemporalBasis basis(2);
   const unsigned int m = basis.n_dofs(), N = 3;
-  SlabOperator<2> op(space, basis, true);
+  SlabOperator<2> op(space, basis, SlabSolverOptions::direct(true));
   op.prepare(0., 0.1);
   const auto &M = op.jump_mass();
   std::mt19937 gen(3);
@@ -134,7 +134,7 @@ TEST_P(AdjointGoal, PrimalGoalEqualsAdjointFormWithEqualSpaces)
   space.setup();
   const TemporalBasis basis(r);
   const TimeMesh mesh = TimeMesh::uniform(0.5, 4);
-  SlabOperator<2> op(space, basis, true);
+  SlabOperator<2> op(space, basis, SlabSolverOptions::direct(true));
   const auto U = march_primal(space, mesh, basis, op, MarchOptions{});
   const GoalVectors j = assemble_goal_vectors(space, goals());
   const auto Z = march_adjoint(space, mesh, basis, op, j, MarchOptions{});

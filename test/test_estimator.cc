@@ -61,7 +61,7 @@ Vector<double> operator_apply(const Space<2> &space, const TemporalBasis &basis,
                               const TimeMesh &mesh, unsigned int n,
                               const std::vector<Vector<double>> &V)
 {
-  SlabOperator<2> op(space, basis, false);
+  SlabOperator<2> op(space, basis, SlabSolverOptions::direct(false));
   op.prepare(mesh.start(n), mesh.tau(n));
   Vector<double> out(V[n].size()), last, c(space.n_dofs());
   vmult_kron(op.full_terms(), V[n], out);

@@ -158,7 +158,7 @@ TEST_P(SlabByDegree, KroneckerEqualsDirectSpaceTimeAssembly)
   Space<2> space(scene, tria, 2, delta0);
   space.setup();
   const TemporalBasis basis(r);
-  SlabOperator<2> op(space, basis, true);
+  SlabOperator<2> op(space, basis, SlabSolverOptions::direct(true));
   const double t0 = 0.3, tau = 0.25;
   op.prepare(t0, tau);
   SparsityPattern sp;
@@ -209,7 +209,7 @@ TEST_P(ExactnessByDegree, PolynomialInTimeAndInFESpaceIsReproduced)
   space.setup();
   const TemporalBasis basis(r);
   const TimeMesh mesh = TimeMesh::uniform(1.0, 3);
-  SlabOperator<2> op(space, basis, true);
+  SlabOperator<2> op(space, basis, SlabSolverOptions::direct(true));
   const auto U = march_primal(space, mesh, basis, op, MarchOptions{});
   const ErrorNorms e = compute_errors(space, mesh, basis, U);
   EXPECT_LT(e.nodal, 1e-10);
@@ -218,7 +218,7 @@ TEST_P(ExactnessByDegree, PolynomialInTimeAndInFESpaceIsReproduced)
   if (r > 0)
   {
     const TemporalBasis lower(r - 1);
-    SlabOperator<2> op2(space, lower, true);
+    SlabOperator<2> op2(space, lower, SlabSolverOptions::direct(true));
     const auto U2 = march_primal(space, mesh, lower, op2, MarchOptions{});
     EXPECT_GT(compute_errors(space, mesh, lower, U2).L2L2, 1e-6);
   }

@@ -69,11 +69,44 @@ std::vector<Entry> make_entries()
        "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},
       {"discretization", "n_slabs", "5", Kind::integer, integer(1, 1000000),
        "Number of equal time slabs."},
-      {"solver", "type", "direct", Kind::text, choice("direct"),
-       "Slab solver: direct (UMFPACK)."},
+      {"solver", "type", "auto", Kind::text, choice("direct|iterative|auto"),
+       "Slab solver: direct (UMFPACK), iterative (Belos Krylov method solver.krylov "
+       "with solver.preconditioner, Trilinos), or auto: iterative iff N_space (r+1)^2 >= "
+       "solver.auto_threshold, else direct."},
       {"solver", "reuse_factorization", "true", Kind::boolean, boolean,
-       "Reuse the LU factorization while the slab matrix is unchanged (same tau, "
-       "coefficients constant in time)."},
+       "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
+       "unchanged (same tau, coefficients constant in time)."},
+      {"solver", "auto_threshold", "1e6", Kind::real, real(0.),
+       "solver.type = auto: iterative iff N_space (r+1)^2 (slab unknowns times the "
+       "temporal block size, which UMFPACK's cost follows) reaches this (README 'Slab "
+       "solvers': from there gmres+kronecker_presb is faster and 2-4x smaller)."},
+      {"solver", "krylov", "gmres", Kind::text, choice("gmres|fgmres|bicgstab"),
+       "Iterative solver: gmres (restarted, right preconditioned), fgmres (flexible) or "
+       "bicgstab (Belos)."},
+      {"solver", "preconditioner", "kronecker_presb", Kind::text,
+       choice("none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker|"
+              "kronecker_presb"),
+       "Preconditioner (Ifpack2 unless noted): ilut / riluk = ILUT / ILU(k) of the whole "
+       "slab matrix; block_jacobi / block_gauss_seidel = one sweep of block relaxation "
+       "with the (r+1)x(r+1) temporal blocks; block_ilu = block ILU(k) (RBILUK) with "
+       "those blocks; kronecker = real Schur decomposition of (tau Mhat)^{-1} D "
+       "decoupling "
+       "the temporal modes, ILU(k) of each shifted spatial matrix, PRESB for complex "
+       "pairs (coefficients frozen at the slab midpoint if they depend on t); none."},
+      {"solver", "tolerance", "1e-10", Kind::real, real(0.),
+       "Krylov stopping rule: ||b - K x|| <= tolerance ||b|| (true residual checked)."},
+      {"solver", "restart", "30", Kind::integer, integer(1, 10000),
+       "GMRES restart length (Krylov vectors kept)."},
+      {"solver", "max_iterations", "500", Kind::integer, integer(1, 1000000),
+       "Krylov iterations per slab solve before it counts as failed."},
+      {"solver", "ilu_fill", "1", Kind::real, real(0.),
+       "ILU(k) level k (riluk, block_ilu, kronecker; rounded) or ILUT fill ratio "
+       "(ilut, >= 1)."},
+      {"solver", "fallback", "none", Kind::text, choice("none|direct"),
+       "On a failed Krylov solve: none = numerical error (exit code 3) naming loop, "
+       "slab, "
+       "solver and residual; direct = redo it with UMFPACK (kept for the remaining slabs "
+       "with the same matrix) and count it in summary.json (solver_fallbacks)."},
       {"study", "mode", "single", Kind::text, choice("single|convergence|dwr"),
        "single: one primal run; convergence: uniform refinement over study.levels "
        "levels; "
@@ -279,6 +312,14 @@ public:
     p.n_slabs = integer("discretization.n_slabs");
     p.solver_type = get("solver.type");
     p.reuse_factorization = boolean("solver.reuse_factorization");
+    p.solver_auto_threshold = real("solver.auto_threshold");
+    p.krylov = get("solver.krylov");
+    p.preconditioner = get("solver.preconditioner");
+    p.solver_tolerance = real("solver.tolerance");
+    p.restart = integer("solver.restart");
+    p.max_iterations = integer("solver.max_iterations");
+    p.ilu_fill = real("solver.ilu_fill");
+    p.fallback = get("solver.fallback");
     p.mode = get("study.mode");
     p.refine = get("study.refine");
     p.levels = integer("study.levels");
@@ -421,6 +462,14 @@ std::string Parameters::to_json(unsigned int indent) const
       {"discretization.n_slabs", std::to_string(n_slabs)},
       {"solver.type", solver_type},
       {"solver.reuse_factorization", reuse_factorization ? "true" : "false"},
+      {"solver.auto_threshold", num(solver_auto_threshold)},
+      {"solver.krylov", krylov},
+      {"solver.preconditioner", preconditioner},
+      {"solver.tolerance", num(solver_tolerance)},
+      {"solver.restart", std::to_string(restart)},
+      {"solver.max_iterations", std::to_string(max_iterations)},
+      {"solver.ilu_fill", num(ilu_fill)},
+      {"solver.fallback", fallback},
       {"study.mode", mode},
       {"study.refine", refine},
       {"study.levels", std::to_string(levels)},

@@ -27,8 +27,16 @@ struct Parameters
   unsigned int n_slabs = 5;
 
   // [solver]
-  std::string solver_type = "direct";
+  std::string solver_type = "auto";
   bool reuse_factorization = true;
+  double solver_auto_threshold = 1e6;
+  std::string krylov = "gmres";
+  std::string preconditioner = "kronecker_presb";
+  double solver_tolerance = 1e-10;
+  unsigned int restart = 30;
+  unsigned int max_iterations = 500;
+  double ilu_fill = 1.;
+  std::string fallback = "none";
 
   // [study]
   std::string mode = "single";

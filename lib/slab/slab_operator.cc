@@ -8,12 +8,71 @@ namespace anisodwr
 {
 using namespace dealii;
 
+namespace
+{
+SolverTotals totals;
+}
+
+const SolverTotals &solver_totals() { return totals; }
+
+std::string solver_totals_json()
+{
+  return "\"solver_fallbacks\": " + std::to_string(totals.fallbacks) +
+         ", \"krylov\": {\"solves\": " + std::to_string(totals.krylov_solves) +
+         ", \"iterations\": " + std::to_string(totals.krylov_iterations) +
+         ", \"max_iterations\": " + std::to_string(totals.max_krylov_iterations) + "}";
+}
+
+SlabSolverOptions slab_solver_options(const Parameters &prm)
+{
+  SlabSolverOptions o;
+  o.type = prm.solver_type;
+  o.reuse_factorization = prm.reuse_factorization;
+  o.auto_threshold = prm.solver_auto_threshold;
+  o.fallback = prm.fallback;
+  o.iterative.krylov = prm.krylov;
+  o.iterative.preconditioner = prm.preconditioner;
+  o.iterative.tolerance = prm.solver_tolerance;
+  o.iterative.restart = prm.restart;
+  o.iterative.max_iterations = prm.max_iterations;
+  o.iterative.ilu_fill = prm.ilu_fill;
+  return o;
+}
+
 template <int dim>
 SlabOperator<dim>::SlabOperator(const Space<dim> &space, const TemporalBasis &basis,
-                                bool reuse_factorization)
-    : space(space), basis(basis), reuse(reuse_factorization)
+                                const SlabSolverOptions &options)
+    : space(space), basis(basis), opt(options), reuse(options.reuse_factorization)
 {
+  if (opt.type != "direct" && opt.type != "iterative" && opt.type != "auto")
+    throw std::invalid_argument("solver.type must be direct, iterative or auto");
+  if (opt.fallback != "none" && opt.fallback != "direct")
+    throw std::invalid_argument("solver.fallback must be none or direct");
   make_kron_sparsity(space.sparsity(), basis.n_dofs(), pattern);
+}
+
+template <int dim>
+SlabOperator<dim>::~SlabOperator() = default;
+
+template <int dim>
+void SlabOperator<dim>::assemble_matrix()
+{
+  Timer timer;
+  assemble_kron(terms_cond, pattern, K);
+  k_assembled = true;
+  time.assemble_slab += timer.wall_time();
+}
+
+template <int dim>
+void SlabOperator<dim>::factorize()
+{
+  if (!k_assembled)
+    assemble_matrix();
+  Timer timer;
+  lu.factorize(K);
+  time.factorize += timer.wall_time();
+  ++time.n_factorizations;
+  lu_valid = true;
 }
 
 template <int dim>
@@ -43,6 +102,7 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     terms_full = {{basis.derivative_with_jump(), &mats[0].M}, {tM, &mats[0].A}};
     terms_cond = {{basis.derivative_with_jump(), &mats[0].Mc}, {tM, &mats[0].Ac}};
     jump_M = &mats[0].M;
+    kron = {basis.derivative_with_jump(), tM, &mats[0].Mc, &mats[0].Ac};
   }
   else
   {
@@ -70,15 +130,26 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     terms_full.push_back({Tj, &mj.M});
     terms_cond.push_back({Tj, &mj.Mc});
     jump_M = &mj.M;
+    // Kronecker preconditioner: D (x) M + tau Mhat (x) A frozen at the middle Gauss point.
+    FullMatrix<double> tM(basis.mass());
+    tM *= tau_n;
+    const auto &mid = mats[sq.size() / 2];
+    kron = {basis.derivative_with_jump(), tM, &mid.Mc, &mid.Ac};
   }
   time.assemble_spatial += timer.wall_time();
-  timer.restart();
-  assemble_kron(terms_cond, pattern, K);
-  time.assemble_slab += timer.wall_time();
-  timer.restart();
-  lu.factorize(K);
-  time.factorize += timer.wall_time();
-  ++time.n_factorizations;
+  use_iterative = opt.type == "iterative" ||
+                  (opt.type == "auto" &&
+                   double(n_slab_dofs()) * basis.n_dofs() >= opt.auto_threshold);
+  krylov[0].reset();
+  krylov[1].reset();
+  lu_valid = false;
+  // The kronecker preconditioners work matrix-free: K is assembled only if needed.
+  K.clear();
+  k_assembled = false;
+  if (!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative))
+    assemble_matrix();
+  if (!use_iterative)
+    factorize();
   factorized = true;
   t0 = t_start;
   tau = tau_n;
@@ -113,7 +184,11 @@ void SlabOperator<dim>::solve(const Vector<double> &load, Vector<double> &U, boo
     space.constraints().condense(block);
     insert_block(block, k, m, rhs);
   }
-  lu.solve(rhs, transpose);
+  double setup_time = 0;
+  if (use_iterative && !lu_valid)
+    setup_time = solve_iterative(rhs, transpose);
+  else
+    lu.solve(rhs, transpose);
   U = rhs;
   for (unsigned int k = 0; k < m; ++k)
   {
@@ -124,8 +199,60 @@ void SlabOperator<dim>::solve(const Vector<double> &load, Vector<double> &U, boo
       node_constraints[k].distribute(block);
     insert_block(block, k, m, U);
   }
-  time.solve += timer.wall_time();
+  time.solve += timer.wall_time() - setup_time;
   ++time.n_solves;
+}
+
+template <int dim>
+double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
+{
+  const int d = transpose ? 1 : 0;
+  double setup_time = 0;
+  if (!krylov[d])
+  {
+    Timer timer;
+    auto solver = std::make_unique<IterativeSlabSolver>(opt.iterative);
+    SlabMatrix matrix;
+    matrix.assembled = k_assembled ? &K : nullptr;
+    matrix.terms = &terms_cond;
+    matrix.m = basis.n_dofs();
+    matrix.split = &kron;
+    solver->setup(matrix, transpose);
+    krylov[d] = std::move(solver);
+    setup_time = timer.wall_time();
+    time.precondition += setup_time;
+    ++time.n_preconditioners;
+  }
+  Vector<double> x(rhs.size());
+  if (guess[d].size() == rhs.size())
+    x = guess[d];
+  try
+  {
+    const KrylovStats stats = krylov[d]->solve(rhs, x);
+    ++time.n_krylov_solves;
+    time.krylov_iterations += stats.iterations;
+    time.max_krylov_iterations = std::max(time.max_krylov_iterations, stats.iterations);
+    ++totals.krylov_solves;
+    totals.krylov_iterations += stats.iterations;
+    totals.max_krylov_iterations =
+        std::max<unsigned long>(totals.max_krylov_iterations, stats.iterations);
+  }
+  catch (const KrylovFailure &)
+  {
+    if (opt.fallback != "direct")
+      throw;
+    ++time.n_fallbacks;
+    ++totals.fallbacks;
+    Timer timer;
+    factorize();
+    setup_time += timer.wall_time();
+    lu.solve(rhs, transpose);
+    guess[d] = rhs;
+    return setup_time;
+  }
+  guess[d] = x;
+  rhs = x;
+  return setup_time;
 }
 
 template class SlabOperator<2>;

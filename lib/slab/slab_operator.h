@@ -1,6 +1,7 @@
 #pragma once
 // The slab operator K_n of SPEC §2 as a Kronecker sum, for one space and one dG(r)
-// basis, with its condensed (constrained) form factorized by UMFPACK.
+// basis, with its condensed (constrained) form solved by UMFPACK or, per
+// SlabSolverOptions, by a Belos Krylov method (lib/solver/iterative_solver.h).
 //
 //   K_n = sum_q w_q [ l(s_q) l'(s_q)^T (x) M(t_q) + tau l(s_q) l(s_q)^T (x) A(t_q) ]
 //         + e e^T (x) M(t_{n-1})
@@ -9,7 +10,9 @@
 // reused while tau does not change.
 #include <deal.II/lac/sparse_direct.h>
 
+#include "config/parameters.h"
 #include "slab/kronecker.h"
+#include "solver/iterative_solver.h"
 #include "space/space.h"
 #include "time/temporal_basis.h"
 
@@ -21,13 +24,52 @@ struct SlabTimings
 {
   double assemble_spatial = 0, assemble_slab = 0, factorize = 0, solve = 0;
   unsigned int n_factorizations = 0, n_solves = 0;
+  /// Iterative path: preconditioner setups (incl. the Tpetra copy of K), their time,
+  /// Krylov solves, their total and largest iteration counts, and the number of
+  /// failed Krylov solves replaced by UMFPACK (solver.fallback = direct).
+  double precondition = 0;
+  unsigned int n_preconditioners = 0, n_krylov_solves = 0, krylov_iterations = 0,
+               max_krylov_iterations = 0, n_fallbacks = 0;
 };
+
+/// Slab solver choice (config section solver).
+struct SlabSolverOptions
+{
+  std::string type = "direct"; ///< direct | iterative | auto
+  bool reuse_factorization = true;
+  /// auto: iterative iff N_space (r+1)^2 >= auto_threshold.
+  double auto_threshold = 1e6;
+  std::string fallback = "none"; ///< none | direct
+  IterativeOptions iterative;
+
+  static SlabSolverOptions direct(bool reuse)
+  {
+    SlabSolverOptions o;
+    o.reuse_factorization = reuse;
+    return o;
+  }
+};
+
+/// Process-wide totals over all SlabOperators (for summary.json).
+struct SolverTotals
+{
+  unsigned long krylov_solves = 0, krylov_iterations = 0, max_krylov_iterations = 0,
+                fallbacks = 0;
+};
+const SolverTotals &solver_totals();
+/// `"solver_fallbacks": n, "krylov": {...}` (JSON members, no braces).
+std::string solver_totals_json();
+
+/// The solver section of the run parameters.
+SlabSolverOptions slab_solver_options(const Parameters &prm);
 
 template <int dim>
 class SlabOperator
 {
 public:
-  SlabOperator(const Space<dim> &space, const TemporalBasis &basis, bool reuse_factorization);
+  SlabOperator(const Space<dim> &space, const TemporalBasis &basis,
+               const SlabSolverOptions &options);
+  ~SlabOperator();
 
   /// Prepares K_n for the slab (t0, t0 + tau]: assembles spatial matrices if needed,
   /// builds the condensed slab matrix and factorizes, unless the previous
@@ -42,16 +84,24 @@ public:
   /// Solves K_n U = load with the Dirichlet values u_D(t0 + s_k tau) at the temporal
   /// nodes and the hanging-node constraints. `load` and U are interleaved full vectors.
   /// If `transpose`, solves K_n^T U = load with homogeneous constraints (adjoint).
+  /// Iterative path: the preconditioner is built on first use per direction and reused
+  /// while K_n is unchanged; the previous solve's solution is the initial guess. A failed
+  /// Krylov solve throws (KrylovFailure) or, with fallback = direct, is redone by UMFPACK
+  /// (which then serves the remaining slabs with the same K_n).
   void solve(const dealii::Vector<double> &load, dealii::Vector<double> &U,
              bool transpose = false);
 
   const SlabTimings &timings() const { return time; }
   dealii::types::global_dof_index n_slab_dofs() const { return space.n_dofs() * basis.n_dofs(); }
+  /// True if the last prepare() chose the iterative path.
+  bool iterative() const { return use_iterative; }
 
 private:
   const Space<dim> &space;
   const TemporalBasis &basis;
+  SlabSolverOptions opt;
   bool reuse;
+  bool use_iterative = false;
 
   std::vector<SpatialMatrices> mats; // one per temporal quadrature point (+ jump), or one
   std::vector<KronTerm> terms_full, terms_cond;
@@ -60,6 +110,14 @@ private:
   dealii::SparseMatrix<double> K;
   dealii::SparseDirectUMFPACK lu;
   bool factorized = false;
+  KronSplit kron;
+  std::unique_ptr<IterativeSlabSolver> krylov[2]; // [transpose]
+  dealii::Vector<double> guess[2];
+  bool lu_valid = false, k_assembled = false;
+  void assemble_matrix();
+  void factorize(); ///< assembles K first if the iterative path skipped it
+  /// Krylov solve in place (rhs -> solution); returns the time spent on setup.
+  double solve_iterative(dealii::Vector<double> &rhs, bool transpose);
   double t0 = 0, tau = -1;
   SlabTimings time;
 };

@@ -175,7 +175,8 @@ void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
       << ", \"u_min\": " << num(p.u_min) << ", \"u_max\": " << num(p.u_max) << "}}";
   }
   f << "\n  ],\n  \"wall_time\": " << num(wall)
-    << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << "\n}\n";
+    << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << ",\n  "
+    << solver_totals_json() << "\n}\n";
 }
 
 /// J_i(u~) with u~ the patch lift I_2h u_h (the reconstruction behind `auto` weights).
@@ -359,7 +360,7 @@ void run_dwr(const Parameters &prm)
         opt.label = "loop " + std::to_string(loop);
         opt.progress = false;
         Timer t;
-        SlabOperator<2> op(primal, basis, prm.reuse_factorization);
+        SlabOperator<2> op(primal, basis, slab_solver_options(prm));
         const auto U = march_primal(primal, mesh, basis, op, opt);
         row.t_primal = t.wall_time();
 
@@ -383,7 +384,7 @@ void run_dwr(const Parameters &prm)
         t.restart();
         Space<2> adjoint(*scene, tria, q, prm.delta0, prm.supg_length == "streamline");
         adjoint.setup();
-        SlabOperator<2> opq(adjoint, basis, prm.reuse_factorization);
+        SlabOperator<2> opq(adjoint, basis, slab_solver_options(prm));
         const auto Z = march_adjoint(adjoint, mesh, basis, opq,
                                      assemble_goal_vectors(adjoint, goals), opt);
         row.t_adjoint = t.wall_time();

@@ -71,7 +71,7 @@ LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned i
   space.setup();
   const TemporalBasis basis(prm.r);
   const TimeMesh mesh = TimeMesh::uniform(scene.end_time, n_slabs);
-  SlabOperator<2> op(space, basis, prm.reuse_factorization);
+  SlabOperator<2> op(space, basis, slab_solver_options(prm));
   MarchOptions opt;
   opt.label = prm.mode == "convergence" ? "level " + std::to_string(level) : "run";
   opt.progress = prm.progress;
@@ -119,8 +119,9 @@ void write_summary(const Parameters &prm, const std::vector<LevelResult> &levels
     << ",\n  \"levels\": [";
   for (std::size_t i = 0; i < levels.size(); ++i)
     f << (i ? ",\n    " : "\n    ") << level_json(levels[i]);
-  f << "\n  ],\n  \"wall_time\": " << num(wall) << ",\n  \"peak_memory_mb\": "
-    << num(peak_memory_mb()) << "\n}\n";
+  f << "\n  ],\n  \"wall_time\": " << num(wall)
+    << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << ",\n  "
+    << solver_totals_json() << "\n}\n";
 }
 
 std::string json_escape(const std::string &s)

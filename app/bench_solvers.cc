@@ -1,0 +1,140 @@
+// One slab-solver benchmark configuration (run each in its own process: peak memory).
+//
+//   anisodwr_bench_solvers SYSTEM P R EPS REFINEMENTS SOLVER [SLABS]
+//     SYSTEM  primal | adjoint (transposed slab systems of the adjoint space)
+//     P       spatial degree of that system (primal Q1/Q2, adjoint Q2/Q4)
+//     SOLVER  direct | KRYLOV+PRECONDITIONER (e.g. gmres+kronecker)
+//     SLABS   slabs marched (tau = 0.05 as in config/moving_hump.json), default 3
+//
+// Moving hump, uniform mesh (REFINEMENTS global refinements of the unit square), SUPG
+// delta0 = 1, solver tolerance 1e-10, restart 30, max 500 iterations. Prints one CSV
+// line (header with --header): setup = factorization or preconditioner (incl. the Tpetra
+// copy of K), solve = per slab, peak = VmHWM of the process. Env BENCH_ILU_FILL sets
+// solver.ilu_fill (default 1).
+#include "config/errors.h"
+#include "goal/goal.h"
+#include "io/table.h"
+#include "scene/scene.h"
+#include "slab/adjoint_march.h"
+#include "slab/primal_march.h"
+
+#include <deal.II/grid/tria.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <sys/resource.h>
+#include <unistd.h>
+
+using namespace anisodwr;
+using namespace dealii;
+
+namespace
+{
+const char *header =
+    "system,p,r,eps,refinements,N_space,N_slab,solver,preconditioner,status,"
+    "setup_s,solve_s_per_slab,iters_mean,iters_max,peak_mb,base_mb,load1,"
+    "message";
+
+double current_rss_mb()
+{
+  long pages = 0, rss = 0;
+  std::FILE *f = std::fopen("/proc/self/statm", "r");
+  if (f)
+  {
+    if (std::fscanf(f, "%ld %ld", &pages, &rss) != 2)
+      rss = 0;
+    std::fclose(f);
+  }
+  return rss * double(sysconf(_SC_PAGESIZE)) / (1024. * 1024.);
+}
+
+double load1()
+{
+  double l[3] = {0, 0, 0};
+  return getloadavg(l, 3) > 0 ? l[0] : -1;
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  if (argc == 2 && std::string(argv[1]) == "--header")
+  {
+    std::cout << header << "\n";
+    return 0;
+  }
+  if (argc < 7)
+  {
+    std::cerr
+        << "usage: anisodwr_bench_solvers SYSTEM P R EPS REFINEMENTS SOLVER [SLABS]\n";
+    return 2;
+  }
+  const std::string system = argv[1], solver = argv[6];
+  const unsigned int p = std::stoi(argv[2]), r = std::stoi(argv[3]),
+                     refs = std::stoi(argv[5]), slabs = argc > 7 ? std::stoi(argv[7]) : 3;
+  const std::string eps = argv[4];
+  const bool adjoint = system == "adjoint";
+
+  SlabSolverOptions o;
+  std::string krylov = "-", prec = "-";
+  if (solver == "direct")
+    o.type = "direct";
+  else
+  {
+    const auto plus = solver.find('+');
+    krylov = solver.substr(0, plus);
+    prec = solver.substr(plus + 1);
+    o.type = "iterative";
+    o.iterative.krylov = krylov;
+    o.iterative.preconditioner = prec;
+    o.iterative.tolerance = 1e-10;
+    o.iterative.restart = 30;
+    o.iterative.max_iterations = 500;
+    if (const char *fill = std::getenv("BENCH_ILU_FILL"))
+      o.iterative.ilu_fill = std::stod(fill);
+  }
+  const auto scene = create_scene<2>(
+      Parameters::from_overrides({"scene.name=moving_hump", "scene.epsilon=" + eps}));
+  Triangulation<2> tria;
+  scene->make_coarse_grid(tria);
+  tria.refine_global(refs);
+  Space<2> space(*scene, tria, p, 1.0);
+  space.setup();
+  const TemporalBasis basis(r);
+  const double tau = 0.05;
+  const TimeMesh mesh = TimeMesh::uniform(slabs * tau, slabs);
+  SlabOperator<2> op(space, basis, o);
+  const double base = current_rss_mb();
+  std::string status = "ok", message;
+  try
+  {
+    MarchOptions mo;
+    mo.label = system;
+    if (adjoint)
+    {
+      const GoalVectors j = assemble_goal_vectors(space, scene->default_goals(0.01));
+      march_adjoint(space, mesh, basis, op, j, mo);
+    }
+    else
+      march_primal(space, mesh, basis, op, mo);
+  }
+  catch (const std::exception &e)
+  {
+    status = "failed";
+    message = e.what();
+    for (auto &c : message)
+      if (c == '"' || c == ',' || c == '\n')
+        c = ';';
+  }
+  const auto &t = op.timings();
+  const double setup = solver == "direct" ? t.factorize : t.precondition;
+  const unsigned int solves = std::max(1u, t.n_solves);
+  std::cout << system << "," << p << "," << r << "," << eps << "," << refs << ","
+            << space.n_dofs() << "," << op.n_slab_dofs() << "," << krylov << "," << prec
+            << "," << status << "," << setup << "," << t.solve / solves << ","
+            << (t.n_krylov_solves ? double(t.krylov_iterations) / t.n_krylov_solves : 0.)
+            << "," << t.max_krylov_iterations << "," << peak_memory_mb() << "," << base
+            << "," << load1() << ",\"" << message << "\"" << std::endl;
+  return 0;
+}
