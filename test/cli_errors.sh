@@ -1,11 +1,6 @@
 #!/usr/bin/env bash
 # Every class of bad input gives exit code 2 and a message naming the key/file/value.
-set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail=0
+source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
 
 expect() { # expect CODE PATTERN -- args...
   local code=$1 pattern=$2

@@ -2,12 +2,7 @@
 # Iterative slab solver failure handling: a Krylov solve that misses the tolerance is a
 # numerical error (exit code 3) naming loop, slab, solver and residual; with
 # solver.fallback = direct the run succeeds and summary.json counts the fallbacks.
-set -u
-bin=$1
-src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail=0
+source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
 cfg=$src/config/moving_hump.json
 common=(--set adaptivity.loops=2 --set solver.type=iterative --set solver.max_iterations=1
   --set solver.preconditioner=ilut)
