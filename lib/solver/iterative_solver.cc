@@ -210,7 +210,7 @@ class KroneckerPreconditioner : public OP
 public:
   KroneckerPreconditioner(const RCP<const Map> &slab_map, const KronSplit &k,
                           bool transpose, const IterativeOptions &o)
-      : slab_map(slab_map), presb(o.preconditioner == "kronecker_presb")
+      : presb(o.preconditioner == "kronecker_presb"), slab_map(slab_map)
   {
     m = k.T1.m();
     const int mi = static_cast<int>(m);
