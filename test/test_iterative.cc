@@ -60,6 +60,7 @@ SlabSolverOptions iterative(const std::string &krylov, const std::string &prec,
   o.iterative.preconditioner = prec;
   o.iterative.tolerance = tol;
   o.iterative.max_iterations = 3000;
+  o.fallback = "none"; // failures must surface in these tests
   o.iterative.restart = 60;
   return o;
 }

@@ -102,7 +102,7 @@ std::vector<Entry> make_entries()
       {"solver", "ilu_fill", "1", Kind::real, real(0.),
        "ILU(k) level k (riluk, block_ilu, kronecker; rounded) or ILUT fill ratio "
        "(ilut, >= 1)."},
-      {"solver", "fallback", "none", Kind::text, choice("none|direct"),
+      {"solver", "fallback", "direct", Kind::text, choice("none|direct"),
        "On a failed Krylov solve: none = numerical error (exit code 3) naming loop, "
        "slab, "
        "solver and residual; direct = redo it with UMFPACK (kept for the remaining slabs "

@@ -36,7 +36,7 @@ struct Parameters
   unsigned int restart = 30;
   unsigned int max_iterations = 500;
   double ilu_fill = 1.;
-  std::string fallback = "none";
+  std::string fallback = "direct";
 
   // [study]
   std::string mode = "single";

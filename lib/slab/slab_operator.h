@@ -39,7 +39,7 @@ struct SlabSolverOptions
   bool reuse_factorization = true;
   /// auto: iterative iff N_space (r+1)^2 >= auto_threshold.
   double auto_threshold = 1e6;
-  std::string fallback = "none"; ///< none | direct
+  std::string fallback = "direct"; ///< none | direct
   IterativeOptions iterative;
 
   static SlabSolverOptions direct(bool reuse)
