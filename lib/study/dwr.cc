@@ -165,14 +165,11 @@ void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
         << "\": {\"J_h\": " << num(r.J_goal[g])
         << ", \"J_exact\": " << num(r.J_goal_exact[g])
         << ", \"weight\": " << num(r.weights[g]) << "}";
-    const auto &p = r.probes;
-    f << "}, \"probes\": {\"layer_width\": " << num(p.layer_width)
-      << ", \"s_hi\": " << num(p.s_hi) << ", \"s_lo\": " << num(p.s_lo)
-      << ", \"overshoot\": " << num(p.overshoot)
-      << ", \"undershoot\": " << num(p.undershoot)
-      << ", \"overshoot_strip\": " << num(p.overshoot_strip)
-      << ", \"undershoot_strip\": " << num(p.undershoot_strip)
-      << ", \"u_min\": " << num(p.u_min) << ", \"u_max\": " << num(p.u_max) << "}}";
+    f << "}, \"probes\": {";
+    for (const auto &[name, value] : r.probes.named())
+      f << "\"" << name << "\": " << num(value) << ", ";
+    f << "\"u_min\": " << num(r.probes.u_min) << ", \"u_max\": " << num(r.probes.u_max)
+      << "}}";
   }
   f << "\n  ],\n  \"wall_time\": " << num(wall)
     << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << ",\n  "
@@ -316,9 +313,8 @@ void run_dwr(const Parameters &prm)
   std::vector<std::string> probe_columns{"loop", "N_space", "N_tot"};
   for (const auto &g : goals)
     probe_columns.push_back("J_" + g.name);
-  for (const char *c : {"layer_width", "s_hi", "s_lo", "overshoot", "undershoot",
-                        "overshoot_strip", "undershoot_strip"})
-    probe_columns.emplace_back(c);
+  for (const auto &field : ProbeResult().named())
+    probe_columns.push_back(field.first);
   CsvTable probe_table(prm.output_directory + "/probes.csv", probe_columns);
   const ProbeSpec<2> probe_spec = scene->probes();
   std::vector<LoopRow> rows;
@@ -470,9 +466,8 @@ void run_dwr(const Parameters &prm)
       {
         std::vector<double> v{double(row.loop), row.n_space, row.n_tot};
         v.insert(v.end(), row.J_goal.begin(), row.J_goal.end());
-        const auto &p = row.probes;
-        v.insert(v.end(), {p.layer_width, p.s_hi, p.s_lo, p.overshoot, p.undershoot,
-                           p.overshoot_strip, p.undershoot_strip});
+        for (const auto &field : row.probes.named())
+          v.push_back(field.second);
         probe_table.add_row(v);
       }
       write_latex(prm.output_directory + "/loops.tex", rows);

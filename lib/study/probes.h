@@ -9,6 +9,7 @@
 #include "scene/scene.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace anisodwr
@@ -60,6 +61,19 @@ struct ProbeResult
   /// max(u_h - u_max, 0) and max(u_min - u_h, 0): whole domain and strip.
   double overshoot = 0, undershoot = 0, overshoot_strip = 0, undershoot_strip = 0;
   double u_min = 0, u_max = 0; ///< the bounds used
+
+  /// The per-loop outputs by name, in the column order of probes.csv (the bounds are
+  /// not among them).
+  std::vector<std::pair<std::string, double>> named() const
+  {
+    return {{"layer_width", layer_width},
+            {"s_hi", s_hi},
+            {"s_lo", s_lo},
+            {"overshoot", overshoot},
+            {"undershoot", undershoot},
+            {"overshoot_strip", overshoot_strip},
+            {"undershoot_strip", undershoot_strip}};
+  }
 };
 
 /// Over-/undershoots are taken at the points of the p-times iterated trapezoidal rule
