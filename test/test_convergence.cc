@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <random>
@@ -157,4 +158,51 @@ TEST(Scenes, RhsMatchesPdeResidualOfExactSolution)
         EXPECT_NEAR(sc->rhs(x, t), f_fd, 1e-4 * (1 + std::abs(f_fd))) << scene << " " << v;
       }
     }
+}
+
+TEST(Scenes, MovingHumpRhsInsideTheLayerAtEpsilon1e6)
+{
+  // f against the PDE residual of u at eps = 1e-6, at points inside the circular layer
+  // (width ~1e-3), with sixth-order central differences (h = 2e-5: truncation ~(h /
+  // 1e-3)^6 ~ 1e-10 relative, rounding ~1e-6 in Lap u, times eps): 1e-8 relative.
+  const auto sc = create_scene<2>(
+      Parameters::from_overrides({"scene.name=moving_hump", "scene.epsilon=1e-6"}));
+  const auto &u = *sc->exact();
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI), offset(-2e-3, 2e-3),
+      time(0.01, 0.49);
+  auto d1 = [](const std::function<double(double)> &g, double h)
+  {
+    return (-g(-3 * h) + 9 * g(-2 * h) - 45 * g(-h) + 45 * g(h) - 9 * g(2 * h) +
+            g(3 * h)) /
+           (60 * h);
+  };
+  auto d2 = [](const std::function<double(double)> &g, double h)
+  {
+    return (2 * g(-3 * h) - 27 * g(-2 * h) + 270 * g(-h) - 490 * g(0) + 270 * g(h) -
+            27 * g(2 * h) + 2 * g(3 * h)) /
+           (180 * h * h);
+  };
+  for (int i = 0; i < 40; ++i)
+  {
+    const double a = angle(gen), r = 0.25 + offset(gen), t = time(gen), h = 2e-5;
+    const dealii::Point<2> x(0.5 + r * std::cos(a), 0.5 + r * std::sin(a));
+    auto along = [&](unsigned int dir)
+    {
+      return [&, dir](double s)
+      {
+        dealii::Point<2> y = x;
+        y[dir] += s;
+        return u.value(y, t);
+      };
+    };
+    const double ut = d1([&](double s) { return u.value(x, t + s); }, 1e-4);
+    const double ux = d1(along(0), h), uy = d1(along(1), h);
+    const double lap = d2(along(0), h) + d2(along(1), h);
+    const auto b = sc->convection(x, t);
+    const double f_fd = ut - sc->epsilon * lap + b[0] * ux + b[1] * uy +
+                        sc->reaction(x, t) * u.value(x, t);
+    EXPECT_NEAR(sc->rhs(x, t), f_fd, 1e-8 * (1 + std::abs(f_fd)))
+        << "x = " << x << ", t = " << t;
+  }
 }

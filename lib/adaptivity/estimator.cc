@@ -543,7 +543,8 @@ template <int dim>
 Indicators<dim>
 estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
          const TemporalBasis &basis, const std::vector<Vector<double>> &U,
-         const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals)
+         const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
+         const TimeIndicator time_indicator)
 {
   const auto &tria = primal.dof_handler().get_triangulation();
   const SpatialOperators<dim> ops(primal.dof_handler(), weight_degree(primal, adjoint));
@@ -742,8 +743,13 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       eu.plus -= u.plus;
       // J'(E u - u): the part over I (E u - u vanishes at t_n, so the end part is 0)
       const double jv = apply(Jf, eu, false);
-      const double eta_tau =
-          0.5 * apply(rho, ez, false) + 0.5 * (jv - apply(A_z, eu, true));
+      const double half_rho = 0.5 * apply(rho, ez, false),
+                   half_rhostar = 0.5 * (jv - apply(A_z, eu, true));
+      const double eta_tau = time_indicator == TimeIndicator::average
+                                 ? half_rho + half_rhostar
+                                 : 2 * half_rhostar;
+      ind.eta_tau_rho += half_rho;
+      ind.eta_tau_rhostar += half_rhostar;
       ind.eta_tau_cell[c] += eta_tau;
       ind.eta_tau_slab[n] += eta_tau;
       ind.eta_tau += eta_tau;
@@ -882,6 +888,6 @@ template Indicators<2> estimate<2>(const Space<2> &, const Space<2> &, const Tim
                                    const TemporalBasis &,
                                    const std::vector<Vector<double>> &,
                                    const std::vector<Vector<double>> &,
-                                   const std::vector<GoalSpec> &);
+                                   const std::vector<GoalSpec> &, TimeIndicator);
 template struct LocalizedForms<2>;
 } // namespace anisodwr

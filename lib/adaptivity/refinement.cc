@@ -3,6 +3,8 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_nothing.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/tria_accessor.h>
+#include <deal.II/grid/tria_iterator.h>
 
 #include <algorithm>
 #include <cmath>
@@ -26,10 +28,11 @@ std::vector<unsigned int> largest(const std::vector<double> &v, double theta)
   order.resize(k);
   return order;
 }
+
 } // namespace
 
 template <int dim>
-unsigned int mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
+MarkingStats mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
                         const MarkingOptions &options)
 {
   const unsigned int n = tria.n_active_cells();
@@ -55,6 +58,22 @@ unsigned int mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
     for (unsigned int ci : largest(eta, options.theta_h))
       cut[ci / dim] = cut[ci / dim] | RefinementCase<dim>::cut_axis(ci % dim);
   }
+  else if (options.marking == "cell")
+  {
+    std::vector<double> eta(n, 0.);
+    for (unsigned int c = 0; c < n; ++c)
+      for (unsigned int i = 0; i < dim; ++i)
+        eta[c] += std::abs(ind.eta_h_cell[c][i]);
+    for (unsigned int c : largest(eta, options.theta_h))
+    {
+      double strongest = 0;
+      for (unsigned int i = 0; i < dim; ++i)
+        strongest = std::max(strongest, std::abs(ind.eta_h_cell[c][i]));
+      for (unsigned int i = 0; i < dim; ++i)
+        if (std::abs(ind.eta_h_cell[c][i]) >= options.kappa * strongest)
+          cut[c] = cut[c] | RefinementCase<dim>::cut_axis(i);
+    }
+  }
   else
     for (unsigned int i = 0; i < dim; ++i)
     {
@@ -74,20 +93,33 @@ unsigned int mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
     for (unsigned int c : largest(eta, options.theta_coarsen))
       coarsen[c] = cut[c] == RefinementCase<dim>::no_refinement;
   }
-  unsigned int flagged = 0;
+  MarkingStats stats;
   for (const auto &cell : tria.active_cell_iterators())
   {
     const auto c = cell->active_cell_index();
     if (cut[c] != RefinementCase<dim>::no_refinement)
     {
       cell->set_refine_flag(cut[c]);
-      ++flagged;
+      ++stats.marked;
+      if (cut[c] == RefinementCase<dim>::isotropic_refinement)
+        ++stats.cut_both;
+      else if (cut[c] == RefinementCase<dim>::cut_axis(0))
+        ++stats.cut_x;
+      else
+        ++stats.cut_y;
     }
     else if (coarsen[c])
       cell->set_coarsen_flag();
   }
   tria.prepare_coarsening_and_refinement();
-  return flagged;
+  for (const auto &cell : tria.active_cell_iterators())
+    if (cell->refine_flag_set() != RefinementCase<dim>::no_refinement)
+    {
+      ++stats.refined;
+      if (cell->refine_flag_set() != cut[cell->active_cell_index()])
+        ++stats.closure;
+    }
+  return stats;
 }
 
 TimeMesh refine_time(const TimeMesh &mesh, const std::vector<double> &eta_tau_slab,
@@ -145,7 +177,7 @@ double max_aspect_ratio(const Triangulation<dim> &tria, const Mapping<dim> &mapp
   return ar;
 }
 
-template unsigned int mark_cells<2>(Triangulation<2> &, const Indicators<2> &,
+template MarkingStats mark_cells<2>(Triangulation<2> &, const Indicators<2> &,
                                     const MarkingOptions &);
 template double max_aspect_ratio<2>(const Triangulation<2> &, const Mapping<2> &,
                                     std::vector<double> *);

@@ -21,16 +21,44 @@ struct MarkingOptions
   /// and marks the theta_h fraction of them; "per_direction" marks the theta_h fraction
   /// of cells separately in each direction (SPEC §6 literally; a cell whose indicators
   /// are all large is then cut in every direction even if one dominates).
-  std::string marking = "joint";
-  double theta_h = 0.25, theta_coarsen = 0.;
+  /// "cell": mark the theta_h fraction of cells by sum_i |eta_h,i^K|; a marked cell is
+  /// cut in direction i iff |eta_h,i^K| >= kappa * max_j |eta_h,j^K| (the directions
+  /// the cell needs, not every direction whose pair passed a global threshold).
+  std::string marking = "cell";
+  double theta_h = 0.25, theta_coarsen = 0., kappa = 0.75;
+};
+
+/// What the marking did, counted on the active cells before refinement.
+struct MarkingStats
+{
+  unsigned int marked = 0;   ///< cells flagged by the marking strategy
+  unsigned int cut_x = 0;    ///< ... of them cut in x only
+  unsigned int cut_y = 0;    ///< ... in y only
+  unsigned int cut_both = 0; ///< ... in every direction (isotropic)
+  unsigned int closure = 0;  ///< cells flagged or extended by the mesh closure
+  unsigned int refined = 0;  ///< cells refined in the end (marked + closure)
 };
 
 /// Sets refinement (and coarsening) flags on the active cells; deal.II's
-/// prepare_coarsening_and_refinement then keeps the mesh one-irregular, refining
-/// coarser neighbours in the needed direction. Returns the number of cells flagged.
+/// prepare_coarsening_and_refinement then keeps the mesh one-irregular. Build `tria`
+/// with Triangulation::allow_anisotropic_smoothing (anisotropic_tria_smoothing()) so
+/// that the closure is anisotropic: the coarser cell at the end of a hanging-node
+/// chain is refined only in the direction the chain needs (without the flag deal.II
+/// 9.4 refines it isotropically; both tested in test_refinement).
 template <int dim>
-unsigned int mark_cells(dealii::Triangulation<dim> &tria, const Indicators<dim> &ind,
+MarkingStats mark_cells(dealii::Triangulation<dim> &tria, const Indicators<dim> &ind,
                         const MarkingOptions &options);
+
+/// The mesh smoothing for the DWR meshes: anisotropic closure in anisotropic mode,
+/// deal.II's default (none) otherwise, so isotropic and uniform runs stay isotropic.
+template <int dim>
+typename dealii::Triangulation<dim>::MeshSmoothing
+tria_smoothing(const MarkingOptions &options)
+{
+  return options.mode == "anisotropic"
+             ? dealii::Triangulation<dim>::allow_anisotropic_smoothing
+             : dealii::Triangulation<dim>::none;
+}
 
 /// Bisects the ceil(theta_tau N) slabs with the largest |eta_tau^n| (none if theta_tau =
 /// 0).

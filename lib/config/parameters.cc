@@ -134,12 +134,18 @@ std::vector<Entry> make_entries()
        choice("anisotropic|isotropic|uniform"),
        "anisotropic: mark per direction by |eta_h,i|; isotropic: mark by |eta_h|, refine "
        "isotropically; uniform: refine every cell."},
-      {"adaptivity", "marking", "joint", Kind::text, choice("joint|per_direction"),
+      {"adaptivity", "marking", "cell", Kind::text, choice("joint|per_direction|cell"),
        "Anisotropic marking. joint: rank all (cell, direction) pairs by |eta_h,i^K| and "
-       "mark "
-       "the theta_h fraction of the pairs; per_direction: mark the theta_h fraction of "
-       "cells "
-       "in each direction separately (refines layer cells in every direction)."},
+       "mark the theta_h fraction of the pairs; per_direction: mark the theta_h fraction "
+       "of cells in each direction separately (refines layer cells in every direction); "
+       "cell: mark the theta_h fraction of cells by sum_i |eta_h,i^K| and cut each "
+       "marked "
+       "cell in direction i only where |eta_h,i^K| >= adaptivity.kappa * max_j "
+       "|eta_h,j^K|."},
+      {"adaptivity", "kappa", "0.75", Kind::real, real(0.),
+       "marking = cell: a marked cell is cut in direction i iff |eta_h,i^K| >= kappa * "
+       "its largest directional indicator, in [0,1] (1: the dominant direction only; 0: "
+       "isotropic)."},
       {"adaptivity", "loops", "6", Kind::integer, integer(1, 1000),
        "Maximum number of DWR loops."},
       {"adaptivity", "theta_h", "0.25", Kind::real, real(0.),
@@ -160,6 +166,21 @@ std::vector<Entry> make_entries()
       {"adaptivity", "max_wall_time", "0", Kind::real, real(0.),
        "Wall-time budget in seconds (0: none): no new loop starts when the time so far "
        "plus twice the last loop's time would exceed it."},
+      {"adaptivity", "time_indicator", "average", Kind::text,
+       choice("average|adjoint_residual"),
+       "Form of eta_tau. average: 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u); "
+       "adjoint_residual: rho*(u,z)(E u - u), exact up to the reconstruction of the "
+       "primal alone; use it when the adjoint is not resolved in time (point goals at T "
+       "with |b| tau >> goal.radius, see doc/results.md)."},
+      {"adaptivity", "per_goal_estimates", "false", Kind::boolean, boolean,
+       "Also solve one adjoint per goal and report each goal's own eta_tau h and I_eff "
+       "(loops.csv: eta_<goal>, I_eff_<goal>), so that cancellation between goals in the "
+       "combined estimate is visible; costs one adjoint solve and estimate per goal."},
+      {"adaptivity", "measure_time_error", "false", Kind::boolean, boolean,
+       "Diagnostic: on every loop solve the primal again with the slabs bisected once "
+       "and twice and report the extrapolated temporal goal error on the loop's spatial "
+       "mesh (loops.csv: err_tau, err_tau_order) next to eta_tau; costs ~6 primal "
+       "solves."},
       {"adaptivity", "adjoint_degree", "0", Kind::integer, integer(0, 8),
        "Polynomial degree q of the adjoint; 0 means q = 2p."},
       {"output", "directory", "results/moving_hump", Kind::text, text,
@@ -330,6 +351,7 @@ public:
     p.goal_weights = get("goal.weights");
     p.adaptivity_mode = get("adaptivity.mode");
     p.marking = get("adaptivity.marking");
+    p.kappa = fraction("adaptivity.kappa");
     p.loops = integer("adaptivity.loops");
     p.theta_h = fraction("adaptivity.theta_h");
     p.theta_tau = fraction("adaptivity.theta_tau");
@@ -339,6 +361,9 @@ public:
     p.max_memory_mb = real("adaptivity.max_memory_mb");
     p.max_wall_time = real("adaptivity.max_wall_time");
     p.adjoint_degree = integer("adaptivity.adjoint_degree");
+    p.measure_time_error = boolean("adaptivity.measure_time_error");
+    p.time_indicator = get("adaptivity.time_indicator");
+    p.per_goal_estimates = boolean("adaptivity.per_goal_estimates");
     p.vtu_loops = integer("output.vtu_loops");
     p.output_directory = get("output.directory");
     p.vtu_every = integer("output.vtu_every");
@@ -480,6 +505,7 @@ std::string Parameters::to_json(unsigned int indent) const
       {"goal.weights", goal_weights},
       {"adaptivity.mode", adaptivity_mode},
       {"adaptivity.marking", marking},
+      {"adaptivity.kappa", num(kappa)},
       {"adaptivity.loops", std::to_string(loops)},
       {"adaptivity.theta_h", num(theta_h)},
       {"adaptivity.theta_tau", num(theta_tau)},
@@ -489,6 +515,9 @@ std::string Parameters::to_json(unsigned int indent) const
       {"adaptivity.max_memory_mb", num(max_memory_mb)},
       {"adaptivity.max_wall_time", num(max_wall_time)},
       {"adaptivity.adjoint_degree", std::to_string(adjoint_degree)},
+      {"adaptivity.measure_time_error", measure_time_error ? "true" : "false"},
+      {"adaptivity.time_indicator", time_indicator},
+      {"adaptivity.per_goal_estimates", per_goal_estimates ? "true" : "false"},
       {"output.vtu_loops", std::to_string(vtu_loops)},
       {"output.directory", output_directory},
       {"output.vtu_every", std::to_string(vtu_every)},

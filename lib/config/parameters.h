@@ -52,7 +52,8 @@ struct Parameters
 
   // [adaptivity]
   std::string adaptivity_mode = "anisotropic";
-  std::string marking = "joint";
+  std::string marking = "cell";
+  double kappa = 0.75;
   unsigned int loops = 6;
   double theta_h = 0.25;
   double theta_tau = 0.2;
@@ -62,6 +63,9 @@ struct Parameters
   double max_memory_mb = 0.;
   double max_wall_time = 0.; ///< s; 0: no budget
   unsigned int adjoint_degree = 0;
+  bool measure_time_error = false;
+  std::string time_indicator = "average";
+  bool per_goal_estimates = false;
 
   // [output]
   std::string output_directory = "results/moving_hump";

@@ -21,6 +21,7 @@
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 namespace anisodwr
 {
@@ -80,6 +81,13 @@ struct LoopRow
   std::vector<double> J_goal, J_goal_exact;
   std::vector<double> weights;
   double t_primal = 0, t_adjoint = 0, t_estimate = 0, t_refine = 0, mem = 0;
+  double eta_tau_rho = 0, eta_tau_rhostar = 0;
+  /// adaptivity.measure_time_error: J_w(u_h) - J_w(u_tau h) on this spatial mesh,
+  /// extrapolated from the time mesh bisected once and twice (NaN when not measured)
+  double err_tau = nan, err_tau_order = nan;
+  /// adaptivity.per_goal_estimates: eta_tau h of each goal from its own adjoint
+  std::vector<double> eta_goal;
+  MarkingStats marking; ///< the refinement that follows this loop (zeros on the last)
   ProbeResult probes;
   double J_error() const { return std::abs(J_exact - J); }
   double I_eff() const { return std::abs((eta_h_total + eta_tau) / (J_exact - J)); }
@@ -104,12 +112,47 @@ struct LoopRow
             t_refine,
             mem};
   }
+  /// values() followed by the columns of extra_columns()
+  std::vector<double> all_values() const
+  {
+    auto v = values();
+    for (std::size_t g = 0; g < J_goal.size(); ++g)
+      v.push_back(J_goal_exact[g] - J_goal[g]);
+    for (std::size_t g = 0; g < J_goal.size(); ++g)
+      v.push_back(g < eta_goal.size() ? eta_goal[g] : nan);
+    for (std::size_t g = 0; g < J_goal.size(); ++g)
+      v.push_back(g < eta_goal.size()
+                      ? std::abs(eta_goal[g] / (J_goal_exact[g] - J_goal[g]))
+                      : nan);
+    v.insert(v.end(),
+             {eta_tau_rho, eta_tau_rhostar, err_tau, err_tau_order,
+              double(marking.marked), double(marking.cut_x), double(marking.cut_y),
+              double(marking.cut_both), double(marking.closure)});
+    return v;
+  }
 };
 
 const std::vector<std::string> columns{
     "loop",   "N_space",  "N_t",       "N_tot",      "J",        "J_error",
     "eta_hx", "eta_hy",   "eta_h",     "eta_tau",    "eta_tauh", "I_eff",
     "ar_max", "t_primal", "t_adjoint", "t_estimate", "t_refine", "mem_peak"};
+
+/// Columns after `columns` in loops.csv: the signed error J_i(u) - J_i(u_tau h) of each
+/// goal (unweighted; empty without an exact solution), each goal's own eta_tau h and
+/// I_eff (adaptivity.per_goal_estimates; else empty), the two halves of eta_tau, the
+/// measured temporal error (adaptivity.measure_time_error; else empty), and
+/// the cells of the refinement after the loop: marked, cut in x only, in y only, in
+/// both, and flagged or extended by the closure.
+std::vector<std::string> all_columns(const std::vector<GoalSpec> &goals)
+{
+  auto c = columns;
+  for (const std::string prefix : {"err_", "eta_", "I_eff_"})
+    for (const auto &g : goals)
+      c.push_back(prefix + g.name);
+  c.insert(c.end(), {"eta_tau_rho", "eta_tau_rhostar", "err_tau", "err_tau_order",
+                     "marked", "marked_x", "marked_y", "marked_xy", "closure"});
+  return c;
+}
 
 void write_latex(const std::string &path, const std::vector<LoopRow> &rows)
 {
@@ -156,9 +199,10 @@ void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
   {
     const auto &r = rows[i];
     f << (i ? ",\n    " : "\n    ") << "{";
-    const auto v = r.values();
-    for (std::size_t c = 0; c < columns.size(); ++c)
-      f << (c ? ", " : "") << "\"" << columns[c] << "\": " << num(v[c]);
+    const auto v = r.all_values();
+    const auto names = all_columns(goals);
+    for (std::size_t c = 0; c < names.size(); ++c)
+      f << (c ? ", " : "") << "\"" << names[c] << "\": " << num(v[c]);
     f << ", \"goals\": {";
     for (std::size_t g = 0; g < goals.size(); ++g)
       f << (g ? ", " : "") << "\"" << goals[g].name
@@ -231,6 +275,42 @@ double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &m
   g.weight = 1;
   return evaluate_goal(assemble_goal_vectors(space, {g}), mesh, basis, U);
 }
+
+TimeIndicator time_indicator(const Parameters &prm)
+{
+  return prm.time_indicator == "average" ? TimeIndicator::average
+                                         : TimeIndicator::adjoint_residual;
+}
+
+/// The temporal part of the goal error on the current spatial mesh, measured: the
+/// primal is solved again on the time mesh bisected once and twice; with
+/// d1 = J(2N) - J(N), d2 = J(4N) - J(2N) and the observed order k = log2(d1 / d2),
+/// J(inf) - J(N) = d1 + d2 / (2^k - 1) (Richardson). Returns {error, k}; k is NaN when
+/// the differences do not contract (then the error is d1 + d2, unextrapolated).
+std::pair<double, double> measure_time_error(const Space<2> &primal, const TimeMesh &mesh,
+                                             const TemporalBasis &basis,
+                                             const SlabSolverOptions &solver,
+                                             const std::vector<GoalSpec> &goals,
+                                             double J_N, const MarchOptions &opt)
+{
+  auto bisect = [](const TimeMesh &m)
+  { return refine_time(m, std::vector<double>(m.n_slabs(), 1.), 1.); };
+  const GoalVectors gv = assemble_goal_vectors(primal, goals);
+  std::vector<double> J{J_N};
+  TimeMesh m = mesh;
+  for (unsigned int level = 1; level <= 2; ++level)
+  {
+    m = bisect(m);
+    SlabOperator<2> op(primal, basis, solver);
+    const auto U = march_primal(primal, m, basis, op, opt);
+    J.push_back(evaluate_goal(gv, m, basis, U));
+  }
+  const double d1 = J[1] - J[0], d2 = J[2] - J[1];
+  const double k = std::log2(d1 / d2);
+  if (!(k > 0.5) || !std::isfinite(k))
+    return {d1 + d2, nan};
+  return {d1 + d2 / (std::pow(2., k) - 1.), k};
+}
 } // namespace
 
 std::vector<GoalSpec> make_goals(const Parameters &prm, const Scene<2> &scene)
@@ -297,19 +377,20 @@ void run_dwr(const Parameters &prm)
     for (std::size_t g = 0; g < goals.size(); ++g)
       J_exact[g] = exact_goal(*scene, goals[g]);
 
-  Triangulation<2> tria;
-  scene->make_coarse_grid(tria);
-  tria.refine_global(prm.initial_refinements);
-  TimeMesh mesh = TimeMesh::uniform(scene->end_time, prm.n_slabs);
-  const TemporalBasis basis(prm.r);
-  const unsigned int q = prm.adjoint_degree ? prm.adjoint_degree : 2 * prm.p;
   MarkingOptions marking;
   marking.mode = prm.adaptivity_mode;
   marking.theta_h = prm.theta_h;
   marking.marking = prm.marking;
   marking.theta_coarsen = prm.theta_coarsen;
+  marking.kappa = prm.kappa;
+  Triangulation<2> tria(tria_smoothing<2>(marking));
+  scene->make_coarse_grid(tria);
+  tria.refine_global(prm.initial_refinements);
+  TimeMesh mesh = TimeMesh::uniform(scene->end_time, prm.n_slabs);
+  const TemporalBasis basis(prm.r);
+  const unsigned int q = prm.adjoint_degree ? prm.adjoint_degree : 2 * prm.p;
 
-  CsvTable table(prm.output_directory + "/loops.csv", columns);
+  CsvTable table(prm.output_directory + "/loops.csv", all_columns(goals));
   std::vector<std::string> probe_columns{"loop", "N_space", "N_tot"};
   for (const auto &g : goals)
     probe_columns.push_back("J_" + g.name);
@@ -377,6 +458,10 @@ void run_dwr(const Parameters &prm)
             row.J_exact = (g ? row.J_exact : 0.) + goals[g].weight * J_exact[g];
         }
 
+        if (prm.measure_time_error)
+          std::tie(row.err_tau, row.err_tau_order) = measure_time_error(
+              primal, mesh, basis, slab_solver_options(prm), goals, row.J, opt);
+
         t.restart();
         Space<2> adjoint(*scene, tria, q, prm.delta0, prm.supg_length == "streamline");
         adjoint.setup();
@@ -386,14 +471,27 @@ void run_dwr(const Parameters &prm)
         row.t_adjoint = t.wall_time();
 
         t.restart();
-        ind = estimate(primal, adjoint, mesh, basis, U, Z, goals);
+        ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, time_indicator(prm));
         row.t_estimate = t.wall_time();
         for (double e : ind.eta_tau_slab)
           if (!std::isfinite(e))
             throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
+        if (prm.per_goal_estimates)
+          for (const auto &goal : goals)
+          {
+            GoalSpec g = goal;
+            g.weight = 1;
+            const auto Zg = march_adjoint(adjoint, mesh, basis, opq,
+                                          assemble_goal_vectors(adjoint, {g}), opt);
+            const auto ig =
+                estimate(primal, adjoint, mesh, basis, U, Zg, {g}, time_indicator(prm));
+            row.eta_goal.push_back(ig.eta_h_total() + ig.eta_tau);
+          }
         row.eta_h = ind.eta_h;
         row.eta_h_total = ind.eta_h_total();
         row.eta_tau = ind.eta_tau;
+        row.eta_tau_rho = ind.eta_tau_rho;
+        row.eta_tau_rhostar = ind.eta_tau_rhostar;
         std::vector<double> ar_cell;
         row.ar = max_aspect_ratio(tria, primal.mapping(), &ar_cell);
 
@@ -455,14 +553,14 @@ void run_dwr(const Parameters &prm)
       if (!stop)
       {
         Timer t;
-        mark_cells(tria, ind, marking);
+        row.marking = mark_cells(tria, ind, marking);
         tria.execute_coarsening_and_refinement();
         mesh = refine_time(mesh, ind.eta_tau_slab, prm.theta_tau);
         row.t_refine = t.wall_time();
       }
       row.mem = peak_memory_mb();
       rows.push_back(row);
-      table.add_row(row.values());
+      table.add_row(row.all_values());
       {
         std::vector<double> v{double(row.loop), row.n_space, row.n_tot};
         v.insert(v.end(), row.J_goal.begin(), row.J_goal.end());

@@ -1,0 +1,190 @@
+// Marking and mesh closure: the cell marking cuts each marked cell only in the
+// directions it needs, the statistics count what was flagged, and the closure of a
+// hanging-node chain on an anisotropic mesh refines the coarser cell only in the
+// direction the chain needs.
+#include "adaptivity/refinement.h"
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+using namespace dealii;
+using namespace anisodwr;
+
+namespace
+{
+/// Indicators on a mesh with n active cells: cell c gets (x[c], y[c]).
+Indicators<2> indicators(const std::vector<std::array<double, 2>> &eta)
+{
+  Indicators<2> ind;
+  ind.eta_h_cell = eta;
+  ind.eta_tau_cell.assign(eta.size(), 0.);
+  return ind;
+}
+
+std::vector<RefinementCase<2>> flags(const Triangulation<2> &tria)
+{
+  std::vector<RefinementCase<2>> f(tria.n_active_cells());
+  for (const auto &cell : tria.active_cell_iterators())
+    f[cell->active_cell_index()] = cell->refine_flag_set();
+  return f;
+}
+} // namespace
+
+TEST(Marking, CellMarkingCutsOnlyTheDirectionsACellNeeds)
+{
+  Triangulation<2> tria;
+  GridGenerator::subdivided_hyper_rectangle(tria, {8, 1}, Point<2>(0, 0), Point<2>(8, 1));
+  // four strong cells with different directional balance, four weak ones; signs mixed
+  const std::vector<std::array<double, 2>> eta{
+      {{1., 0.1}},   {{-0.05, 0.9}}, {{0.6, -0.5}},   {{0.02, 0.02}},
+      {{0.8, 0.45}}, {{1e-3, 0.}},   {{0.01, -0.03}}, {{0., 0.}}};
+  MarkingOptions opt;
+  opt.marking = "cell";
+  opt.theta_h = 0.5; // four cells
+  opt.kappa = 0.5;
+  const MarkingStats s = mark_cells(tria, indicators(eta), opt);
+  const auto f = flags(tria);
+  EXPECT_EQ(f[0], RefinementCase<2>::cut_x);
+  EXPECT_EQ(f[1], RefinementCase<2>::cut_y);
+  EXPECT_EQ(f[2], RefinementCase<2>::cut_xy) << "0.5 >= 0.5 * 0.6";
+  EXPECT_EQ(f[3], RefinementCase<2>::no_refinement) << "weak cell";
+  EXPECT_EQ(f[4], RefinementCase<2>::cut_xy) << "0.45 >= 0.5 * 0.8";
+  EXPECT_EQ(s.marked, 4u);
+  EXPECT_EQ(s.cut_x, 1u);
+  EXPECT_EQ(s.cut_y, 1u);
+  EXPECT_EQ(s.cut_both, 2u);
+  EXPECT_EQ(s.closure, 0u) << "no hanging-node chain on a one-row mesh";
+  EXPECT_EQ(s.refined, 4u);
+}
+
+TEST(Marking, KappaOneCutsOnlyTheDominantDirectionAndZeroIsIsotropic)
+{
+  const std::vector<std::array<double, 2>> eta{
+      {{1., 0.9}}, {{0.2, 0.7}}, {{0., 0.}}, {{0., 0.}}};
+  for (double kappa : {1., 0.})
+  {
+    Triangulation<2> tria;
+    GridGenerator::subdivided_hyper_rectangle(tria, {4, 1}, Point<2>(0, 0),
+                                              Point<2>(4, 1));
+    MarkingOptions opt;
+    opt.marking = "cell";
+    opt.theta_h = 0.5;
+    opt.kappa = kappa;
+    mark_cells(tria, indicators(eta), opt);
+    const auto f = flags(tria);
+    EXPECT_EQ(f[0], kappa == 1. ? RefinementCase<2>::cut_x : RefinementCase<2>::cut_xy);
+    EXPECT_EQ(f[1], kappa == 1. ? RefinementCase<2>::cut_y : RefinementCase<2>::cut_xy);
+    EXPECT_EQ(f[2], RefinementCase<2>::no_refinement);
+  }
+}
+
+TEST(Marking, JointMarkingTakesTheWeakDirectionOfStrongCellsFirst)
+{
+  // the contrast that motivates `cell`: with joint ranking over (cell, direction)
+  // pairs, the weak y indicator of cell 0 (0.5) outranks the only indicator of cell 1
+  // (0.4), so cell 0 is cut isotropically and cell 1 not at all
+  const std::vector<std::array<double, 2>> eta{
+      {{1., 0.5}}, {{0.4, 0.}}, {{0., 0.}}, {{0., 0.}}};
+  Triangulation<2> tria;
+  GridGenerator::subdivided_hyper_rectangle(tria, {4, 1}, Point<2>(0, 0), Point<2>(4, 1));
+  MarkingOptions opt;
+  opt.marking = "joint";
+  opt.theta_h = 0.25; // 2 of the 8 pairs
+  const MarkingStats s = mark_cells(tria, indicators(eta), opt);
+  const auto f = flags(tria);
+  EXPECT_EQ(f[0], RefinementCase<2>::cut_xy);
+  EXPECT_EQ(f[1], RefinementCase<2>::no_refinement);
+  EXPECT_EQ(s.cut_both, 1u);
+}
+
+TEST(Closure, HangingNodeChainIsClosedAnisotropically)
+{
+  // two unit cells side by side: L = [0,1]x[0,1], R = [1,2]x[0,1]. L is refined
+  // isotropically, then the two children of L that touch R are cut in y (a horizontal
+  // cut halves their faces with R). R's left face then carries three hanging nodes:
+  // the closure must refine R so that this face is cut, i.e. cut_y, not isotropically.
+  Triangulation<2> tria(Triangulation<2>::allow_anisotropic_smoothing);
+  GridGenerator::subdivided_hyper_rectangle(tria, {2, 1}, Point<2>(0, 0), Point<2>(2, 1));
+  tria.begin_active()->set_refine_flag(RefinementCase<2>::cut_xy);
+  tria.execute_coarsening_and_refinement();
+  for (const auto &cell : tria.active_cell_iterators())
+    if (cell->center()[0] > 0.5 && cell->center()[0] < 1.)
+      cell->set_refine_flag(RefinementCase<2>::cut_y);
+  tria.prepare_coarsening_and_refinement();
+  unsigned int checked = 0;
+  for (const auto &cell : tria.active_cell_iterators())
+    if (cell->center()[0] > 1.)
+    {
+      EXPECT_EQ(cell->refine_flag_set(), RefinementCase<2>::cut_y)
+          << "the coarse neighbour is closed in the direction the chain needs";
+      ++checked;
+    }
+  EXPECT_EQ(checked, 1u);
+  tria.execute_coarsening_and_refinement();
+  // R's two children are stacked in y, each of height 1/2 and width 1
+  unsigned int right = 0;
+  for (const auto &cell : tria.active_cell_iterators())
+    if (cell->center()[0] > 1.)
+    {
+      EXPECT_NEAR(cell->extent_in_direction(0), 1., 1e-14);
+      EXPECT_NEAR(cell->extent_in_direction(1), 0.5, 1e-14);
+      ++right;
+    }
+  EXPECT_EQ(right, 2u);
+}
+
+TEST(Closure, DealIIAloneClosesTheSameChainIsotropically)
+{
+  // the reason for close_anisotropically: the same chain closed by deal.II 9.4 alone
+  Triangulation<2> tria;
+  GridGenerator::subdivided_hyper_rectangle(tria, {2, 1}, Point<2>(0, 0), Point<2>(2, 1));
+  tria.begin_active()->set_refine_flag(RefinementCase<2>::cut_xy);
+  tria.execute_coarsening_and_refinement();
+  for (const auto &cell : tria.active_cell_iterators())
+    if (cell->center()[0] > 0.5 && cell->center()[0] < 1.)
+      cell->set_refine_flag(RefinementCase<2>::cut_y);
+  tria.prepare_coarsening_and_refinement();
+  for (const auto &cell : tria.active_cell_iterators())
+    if (cell->center()[0] > 1.)
+      EXPECT_EQ(cell->refine_flag_set(), RefinementCase<2>::cut_xy);
+}
+
+TEST(Closure, AnisotropicClosureNeedsFewerCellsOnAGradedMesh)
+{
+  // cuts in x only towards x = 0 and in y only towards y = 0, six times: with the
+  // anisotropic closure the mesh stays valid, the closure adds fewer cells than
+  // deal.II's isotropic closure, and cells are cut isotropically only where a chain
+  // needs both directions
+  std::array<unsigned int, 2> cells{}, closure_xy{};
+  for (unsigned int variant = 0; variant < 2; ++variant)
+  {
+    Triangulation<2> tria(variant == 0 ? Triangulation<2>::allow_anisotropic_smoothing
+                                       : Triangulation<2>::none);
+    GridGenerator::subdivided_hyper_cube(tria, 4);
+    for (unsigned int loop = 0; loop < 6; ++loop)
+    {
+      for (const auto &cell : tria.active_cell_iterators())
+      {
+        const auto c = cell->center();
+        if (c[0] < 0.3 && c[1] > 0.3)
+          cell->set_refine_flag(RefinementCase<2>::cut_x);
+        else if (c[1] < 0.3 && c[0] > 0.3)
+          cell->set_refine_flag(RefinementCase<2>::cut_y);
+      }
+      tria.prepare_coarsening_and_refinement();
+      for (const auto &cell : tria.active_cell_iterators())
+        closure_xy[variant] += cell->refine_flag_set() == RefinementCase<2>::cut_xy;
+      tria.execute_coarsening_and_refinement();
+    }
+    cells[variant] = tria.n_active_cells();
+  }
+  EXPECT_LT(cells[0], cells[1]);
+  EXPECT_LT(closure_xy[0], closure_xy[1]);
+  std::cout << "active cells: anisotropic closure " << cells[0] << ", isotropic "
+            << cells[1] << "; cells closed isotropically " << closure_xy[0] << " vs "
+            << closure_xy[1] << "\n";
+}
