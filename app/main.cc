@@ -1,6 +1,7 @@
 // anisodwr command-line program: parse, run, report.
 #include "config/errors.h"
 #include "config/parameters.h"
+#include "io/table.h"
 #include "study/dwr.h"
 #include "study/study.h"
 
@@ -20,7 +21,8 @@ Usage:
   anisodwr defaults        print the complete default config (documented JSON; "#key" = doc)
   anisodwr --help
 
-Exit codes: 0 success, 2 bad input (file, JSON, key, value), 3 numerical failure.
+Exit codes: 0 success, 2 bad input (file, JSON, key, value, output directory in use),
+3 numerical failure or out of memory, 130/143 interrupted (SIGINT/SIGTERM).
 Outputs (in output.directory): summary.json, convergence.csv (study.mode = convergence),
 solution.pvd + solution-NNNN.vtu (study.mode = single).
 )";
@@ -70,6 +72,7 @@ int main(int argc, char **argv)
     if (!output.empty())
       overrides.push_back("output.directory=" + output);
     const Parameters prm = Parameters::read(args[1], overrides);
+    lock_output_directory(prm.output_directory);
     if (prm.mode == "dwr")
       run_dwr(prm);
     else
@@ -89,6 +92,14 @@ int main(int argc, char **argv)
   catch (const NumericalError &e)
   {
     std::cerr << "anisodwr: numerical failure: " << e.what() << std::endl;
+    return exit_numerical_error;
+  }
+  catch (const std::bad_alloc &)
+  {
+    std::cerr << "anisodwr: numerical failure: out of memory (std::bad_alloc); reduce the "
+                 "problem size (discretization.initial_refinements, adaptivity.max_dofs, "
+                 "adaptivity.max_memory_mb)"
+              << std::endl;
     return exit_numerical_error;
   }
   catch (const std::exception &e)

@@ -1,5 +1,6 @@
 #pragma once
 // Error classes of anisodwr and the exit codes the program maps them to.
+#include <new>
 #include <stdexcept>
 #include <string>
 
@@ -14,11 +15,35 @@ public:
 
 /// Numerical failure (solver failure, NaN/Inf). The program exits with code 3.
 /// The message names the DWR loop / study level and the slab.
+/// what() is one line; details() holds the full text of a library error (written to
+/// summary.json), if any.
 class NumericalError : public std::runtime_error
 {
 public:
-  using std::runtime_error::runtime_error;
+  explicit NumericalError(const std::string &message, std::string details = "")
+      : std::runtime_error(message), full(std::move(details))
+  {
+  }
+  const std::string &details() const { return full; }
+
+private:
+  std::string full;
 };
+
+/// The message of a failure for summary.json's status ("out of memory" for bad_alloc).
+inline std::string failure_message(const std::exception &e)
+{
+  if (dynamic_cast<const std::bad_alloc *>(&e))
+    return "out of memory (std::bad_alloc)";
+  return e.what();
+}
+
+/// The details of a failure (empty unless it is a NumericalError with details).
+inline std::string failure_details(const std::exception &e)
+{
+  const auto *n = dynamic_cast<const NumericalError *>(&e);
+  return n ? n->details() : std::string();
+}
 
 constexpr int exit_ok = 0;
 constexpr int exit_input_error = 2;

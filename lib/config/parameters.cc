@@ -8,7 +8,11 @@
 #include <boost/property_tree/ptree.hpp>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -35,6 +39,13 @@ struct Entry
   Kind kind;
   std::shared_ptr<PatternBase> pattern;
   std::string doc;
+  /// What the value must be, in words (overrides the pattern's description).
+  std::string range = "";
+
+  std::string expected() const
+  {
+    return range.empty() ? pattern->description(PatternBase::OutputStyle::Text) : range;
+  }
 };
 
 std::vector<Entry> make_entries()
@@ -53,8 +64,10 @@ std::vector<Entry> make_entries()
        "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
        "alpha), poly_space (rotating coefficients, spatial part in Q2). heat: poly "
        "(default) or trig. moving_hump: none."},
-      {"scene", "epsilon", "1e-6", Kind::real, real(0.), "Diffusion coefficient, > 0."},
-      {"scene", "end_time", "0.5", Kind::real, real(0.), "Final time T > 0."},
+      {"scene", "epsilon", "1e-6", Kind::real, real(0.), "Diffusion coefficient, > 0.",
+       "a number > 0"},
+      {"scene", "end_time", "0.5", Kind::real, real(0.), "Final time T > 0.",
+       "a number > 0"},
       {"discretization", "p", "1", Kind::integer, integer(1, 4),
        "Polynomial degree of FE_Q in space (1..4)."},
       {"discretization", "r", "0", Kind::integer, integer(0, 10),
@@ -125,7 +138,8 @@ std::vector<Entry> make_entries()
       {"goal", "over_time", "false", Kind::boolean, boolean,
        "Custom goals: integrate over I (true) or evaluate at T (false)."},
       {"goal", "radius", "0.01", Kind::real, real(0.),
-       "Mollifier radius s of point goals; 0 = exact point evaluation (Dirac)."},
+       "Mollifier radius s of point goals; 0 = exact point evaluation (Dirac).",
+       "a number >= 0 (and at most the diameter of the scene's domain)"},
       {"goal", "weights", "1", Kind::text, text,
        "Weights w_i of J_w = sum w_i J_i: one number for all goals, a comma list (one "
        "per "
@@ -150,12 +164,15 @@ std::vector<Entry> make_entries()
        "Maximum number of DWR loops."},
       {"adaptivity", "theta_h", "0.25", Kind::real, real(0.),
        "Fraction of cells marked per direction (by count, largest indicators), in "
-       "[0,1]."},
+       "[0,1].",
+       "a fraction in [0, 1]"},
       {"adaptivity", "theta_tau", "0.2", Kind::real, real(0.),
        "Fraction of slabs bisected (largest |eta_tau^n|), in [0,1]; 0 keeps the time "
-       "mesh."},
+       "mesh.",
+       "a fraction in [0, 1]"},
       {"adaptivity", "theta_coarsen", "0", Kind::real, real(0.),
-       "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1]."},
+       "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1].",
+       "a fraction in [0, 1]"},
       {"adaptivity", "tolerance", "0", Kind::real, real(0.),
        "Stop when |eta_tau_h| < tolerance (0: no tolerance)."},
       {"adaptivity", "max_dofs", "0", Kind::real, real(0.),
@@ -268,21 +285,82 @@ public:
                        suggestion(key, keys));
     if (!found->pattern->match(value))
       throw InputError(origin + ": invalid value '" + value + "' for key '" + section +
-                       "." + key + "'; expected " +
-                       found->pattern->description(PatternBase::OutputStyle::Text) +
-                       " (" + found->doc + ")");
+                       "." + key + "'; expected " + found->expected() + " (" +
+                       found->doc + ")");
     values[section + "." + key] = value;
+    origins[section + "." + key] = origin;
+  }
+
+  /// Deepest nesting of [ and { accepted in a config (sections hold values: depth 2).
+  static constexpr unsigned int max_depth = 64;
+
+  /// The top level must be an object and the nesting at most max_depth deep (the JSON
+  /// reader recurses once per level; without the limit deep input overflows the stack).
+  static void check_structure(const std::string &file, const std::string &text)
+  {
+    std::size_t start = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+    start = text.find_first_not_of(" \t\r\n", start);
+    if (start == std::string::npos || text[start] != '{')
+      throw InputError(file + ": the top level of a config must be a JSON object "
+                              "{\"section\": {\"key\": value}}, found " +
+                       (start == std::string::npos
+                            ? std::string("an empty file")
+                            : "'" + text.substr(start, std::min<std::size_t>(
+                                                           20, text.find_first_of(
+                                                                   "\r\n", start) -
+                                                                   start)) +
+                                  "'"));
+    unsigned int depth = 0;
+    bool in_string = false;
+    for (std::size_t i = start; i < text.size(); ++i)
+    {
+      const char c = text[i];
+      if (in_string)
+      {
+        if (c == '\\')
+          ++i;
+        else if (c == '"')
+          in_string = false;
+      }
+      else if (c == '"')
+        in_string = true;
+      else if (c == '[' || c == '{')
+      {
+        if (++depth > max_depth)
+          throw InputError(file + ": JSON nested deeper than " +
+                           std::to_string(max_depth) +
+                           " levels (a config is {\"section\": {\"key\": value}})");
+      }
+      else if ((c == ']' || c == '}') && depth > 0)
+        --depth;
+    }
   }
 
   void read_file(const std::string &file)
   {
-    std::ifstream in(file);
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+      throw InputError(file + ": is a directory, not a config file");
+    std::ifstream in(file, std::ios::binary);
     if (!in)
-      throw InputError(file + ": cannot open the config file for reading");
+      throw InputError(file + ": cannot open the config file for reading: " +
+                       std::strerror(errno));
+    std::string text;
+    try
+    {
+      in.exceptions(std::ios::badbit);
+      text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    catch (const std::exception &)
+    {
+      throw InputError(file + ": cannot read the config file: " + std::strerror(errno));
+    }
+    check_structure(file, text);
     boost::property_tree::ptree tree;
     try
     {
-      boost::property_tree::read_json(in, tree);
+      std::istringstream stream(text);
+      boost::property_tree::read_json(stream, tree);
     }
     catch (const boost::property_tree::json_parser_error &e)
     {
@@ -370,11 +448,19 @@ public:
     p.progress = boolean("output.progress");
     positive("scene.epsilon", p.epsilon);
     positive("scene.end_time", p.end_time);
+    for (const auto &[key, value] : values)
+      p.sources[key] = origin(key);
     return p;
   }
 
 private:
-  std::map<std::string, std::string> values;
+  std::map<std::string, std::string> values, origins;
+
+  std::string origin(const std::string &k) const
+  {
+    const auto it = origins.find(k);
+    return it == origins.end() ? "default" : it->second;
+  }
 
   std::string get(const std::string &k) const { return values.at(k); }
   double real(const std::string &k) const { return std::stod(get(k)); }
@@ -387,14 +473,14 @@ private:
   {
     const double v = real(k);
     if (v > 1.)
-      throw InputError("invalid value '" + get(k) + "' for key '" + k +
+      throw InputError(origin(k) + ": invalid value '" + get(k) + "' for key '" + k +
                        "'; expected a fraction in [0, 1]");
     return v;
   }
   void positive(const std::string &k, double v) const
   {
     if (!(v > 0.))
-      throw InputError("invalid value '" + get(k) + "' for key '" + k +
+      throw InputError(origin(k) + ": invalid value '" + get(k) + "' for key '" + k +
                        "'; expected a number > 0");
   }
 };
@@ -428,7 +514,7 @@ std::string format(const std::map<std::string, std::string> &values, bool with_d
     if (with_docs)
       out << "\n"
           << pad << "    \"#" << e.key << "\": \"" << e.doc
-          << " Allowed: " << e.pattern->description(PatternBase::OutputStyle::Text)
+          << " Allowed: " << e.expected()
           << "\",";
     out << "\n"
         << pad << "    \"" << e.key
@@ -438,6 +524,12 @@ std::string format(const std::map<std::string, std::string> &values, bool with_d
   return out.str();
 }
 } // namespace
+
+std::string Parameters::source(const std::string &key) const
+{
+  const auto it = sources.find(key);
+  return it == sources.end() ? "default" : it->second;
+}
 
 Parameters Parameters::read(const std::string &file,
                             const std::vector<std::string> &overrides)

@@ -5,6 +5,7 @@
 // its pattern and its documentation. `anisodwr defaults` prints that table as a
 // loadable JSON file in which "#key" entries hold the documentation.
 #include <iosfwd>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,11 @@ struct Parameters
   unsigned int vtu_every = 1;
   bool progress = true;
   unsigned int vtu_loops = 1;
+
+  /// Where each key's value came from: the config file's path, "--set" or "default".
+  std::map<std::string, std::string> sources;
+  /// sources[key] ("default" if unknown); messages start with it.
+  std::string source(const std::string &key) const;
 
   /// Reads `file`, then applies the overrides "section.key=value" in order.
   /// Throws InputError naming the file, key and value on any problem.

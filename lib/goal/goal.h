@@ -63,10 +63,13 @@ double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh,
                      const TemporalBasis &basis,
                      const std::vector<dealii::Vector<double>> &U);
 
-/// J(u) of one goal (weight not applied) for the scene's exact solution u, by adaptive
-/// iterated Gauss quadrature in space (tolerance `tol` relative to the goal's scale)
-/// and composite Gauss in time for goals over I. Throws if the scene has no exact
-/// solution.
+/// J(u) of one goal (weight not applied) for the scene's exact solution u, by globally
+/// adaptive nested Gauss quadrature in space over the goal's support clipped to the
+/// scene's box (tolerance `tol` relative to the integral of |integrand|; the cost
+/// grows with the logarithm of the layer width and is bounded by a work limit) and
+/// composite Gauss in time for goals over I. If the tolerance is not reached, a value
+/// still accurate to 1e-8 is returned with a warning on stderr; otherwise, or if the
+/// value is not finite, or the scene has no exact solution: InputError.
 template <int dim>
 double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol = 1e-13);
 

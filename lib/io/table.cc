@@ -2,7 +2,15 @@
 
 #include "config/errors.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/resource.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
 
 #include <cmath>
 #include <filesystem>
@@ -61,5 +69,172 @@ void make_directory(const std::string &dir)
   std::filesystem::create_directories(dir, ec);
   if (ec)
     throw InputError("output directory '" + dir + "': cannot create it: " + ec.message());
+}
+std::string json_escape(const std::string &s)
+{
+  std::string o;
+  for (const char c : s)
+    switch (c)
+    {
+      case '"':
+        o += "\\\"";
+        break;
+      case '\\':
+        o += "\\\\";
+        break;
+      case '\n':
+        o += "\\n";
+        break;
+      case '\t':
+        o += "\\t";
+        break;
+      case '\r':
+        o += "\\r";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20)
+        {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned int>(c));
+          o += buf;
+        }
+        else
+          o += c;
+    }
+  return o;
+}
+
+namespace
+{
+/// SIGINT and SIGTERM blocked while an object lives.
+class SignalBlock
+{
+public:
+  SignalBlock()
+  {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigprocmask(SIG_BLOCK, &set, &old);
+  }
+  ~SignalBlock() { sigprocmask(SIG_SETMASK, &old, nullptr); }
+
+private:
+  sigset_t old;
+};
+
+// What the signal handler writes (only changed while the signals are blocked).
+std::string interrupt_path, interrupt_tmp, interrupt_content;
+
+void write_all(int fd, const char *data, std::size_t size)
+{
+  while (size > 0)
+  {
+    const ssize_t n = ::write(fd, data, size);
+    if (n <= 0)
+      return;
+    data += n;
+    size -= std::size_t(n);
+  }
+}
+
+extern "C" void on_interrupt(int sig)
+{
+  // async-signal-safe calls only: open, write, close, rename, _exit
+  if (!interrupt_path.empty())
+  {
+    const int fd = ::open(interrupt_tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0)
+    {
+      write_all(fd, interrupt_content.data(), interrupt_content.size());
+      ::close(fd);
+      ::rename(interrupt_tmp.c_str(), interrupt_path.c_str());
+    }
+  }
+  const char msg[] = "anisodwr: interrupted; summary.json has status \"interrupted\"\n";
+  write_all(2, msg, sizeof msg - 1);
+  _exit(128 + sig);
+}
+} // namespace
+
+void write_file_atomically(const std::string &path, const std::string &content)
+{
+  const SignalBlock block;
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f << content;
+    f.flush();
+    if (!f)
+      throw InputError(tmp + ": cannot write");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec)
+    throw InputError(path + ": cannot replace it by " + tmp + ": " + ec.message());
+}
+
+void lock_output_directory(const std::string &dir)
+{
+  make_directory(dir);
+  const std::string lock = dir + "/.anisodwr.lock";
+  const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0)
+    throw InputError("output directory '" + dir + "': cannot create the lock file " +
+                     lock + ": " + std::strerror(errno));
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0)
+  {
+    const int err = errno;
+    ::close(fd);
+    if (err == EWOULDBLOCK)
+      throw InputError("output directory '" + dir +
+                       "' is in use by another anisodwr run (it holds " + lock +
+                       "); choose another --output");
+    throw InputError("output directory '" + dir + "': cannot lock " + lock + ": " +
+                     std::strerror(err));
+  }
+  // fd stays open (and locked) until the process ends
+  namespace fs = std::filesystem;
+  auto ends = [](const std::string &s, const std::string &e)
+  { return s.size() >= e.size() && s.compare(s.size() - e.size(), e.size(), e) == 0; };
+  auto starts = [](const std::string &s, const std::string &b)
+  { return s.compare(0, b.size(), b) == 0; };
+  std::error_code ec;
+  for (const auto &entry : fs::directory_iterator(dir, ec))
+  {
+    if (!entry.is_regular_file(ec))
+      continue;
+    const std::string name = entry.path().filename().string();
+    const bool ours =
+        name == "summary.json" || name == "summary.json.tmp" || name == "loops.csv" ||
+        name == "loops.tex" || name == "loops.pvd" || name == "probes.csv" ||
+        name == "convergence.csv" || name == "solution.pvd" ||
+        ((starts(name, "loop-") || starts(name, "solution-")) &&
+         (ends(name, ".vtu") || ends(name, ".cells.csv"))) ||
+        (starts(name, "cut_") && ends(name, ".csv"));
+    if (ours)
+      fs::remove(entry.path(), ec);
+  }
+}
+
+void set_interrupt_summary(const std::string &path, const std::string &content)
+{
+  const SignalBlock block;
+  static bool installed = false;
+  if (!installed)
+  {
+    struct sigaction sa = {};
+    sa.sa_handler = on_interrupt;
+    sigemptyset(&sa.sa_mask);
+    sigaddset(&sa.sa_mask, SIGINT);
+    sigaddset(&sa.sa_mask, SIGTERM);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+    installed = true;
+  }
+  interrupt_path = path;
+  interrupt_tmp = path + ".tmp";
+  interrupt_content = content;
 }
 } // namespace anisodwr

@@ -29,4 +29,22 @@ double peak_memory_mb();
 
 /// Creates the directory (and parents); InputError naming it if that fails.
 void make_directory(const std::string &dir);
+
+/// s as the inside of a JSON string (quotes, backslashes, control characters escaped).
+std::string json_escape(const std::string &s);
+
+/// Writes `content` to path + ".tmp" and renames it to `path` (readers see the old or
+/// the new file, never a partial one); SIGINT/SIGTERM are held back meanwhile.
+void write_file_atomically(const std::string &path, const std::string &content);
+
+/// Creates `dir`, takes an exclusive lock on dir/.anisodwr.lock for the lifetime of the
+/// process (InputError naming the directory if another process holds it) and removes
+/// the files a previous run wrote there (only names anisodwr writes: summary.json,
+/// *.csv tables, loop-/solution- VTU, PVD and cells.csv files, cut_*.csv).
+void lock_output_directory(const std::string &dir);
+
+/// On SIGINT/SIGTERM the program writes `content` (a summary with status
+/// "interrupted") to `path` atomically and exits with 128 + the signal number.
+/// Installs the handlers on the first call; later calls replace path and content.
+void set_interrupt_summary(const std::string &path, const std::string &content);
 } // namespace anisodwr

@@ -52,9 +52,36 @@ template <int dim> std::vector<GoalSpec> Scene<dim>::default_goals(double radius
   return {g};
 }
 
+template <int dim>
+std::array<dealii::Point<dim>, 2> Scene<dim>::bounding_box() const
+{
+  dealii::Point<dim> hi;
+  for (unsigned int d = 0; d < dim; ++d)
+    hi[d] = 1.;
+  return {{dealii::Point<dim>(), hi}};
+}
+
+template <int dim> bool Scene<dim>::contains(const dealii::Point<dim> &x) const
+{
+  const auto box = bounding_box();
+  const double tol = 1e-12 * box[0].distance(box[1]);
+  for (unsigned int d = 0; d < dim; ++d)
+    if (!(x[d] >= box[0][d] - tol && x[d] <= box[1][d] + tol)) // false for NaN
+      return false;
+  return true;
+}
+
+template <int dim>
+bool Scene<dim>::contains_box(const dealii::Point<dim> &lo, const dealii::Point<dim> &hi) const
+{
+  return contains(lo) && contains(hi);
+}
+
 template <int dim> std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm)
 {
   std::unique_ptr<Scene<dim>> scene;
+  try
+  {
   if (prm.scene == "moving_hump")
     scene = std::make_unique<MovingHump>(prm.epsilon, prm.variant);
   else if (prm.scene == "manufactured")
@@ -66,10 +93,19 @@ template <int dim> std::unique_ptr<Scene<dim>> create_scene(const Parameters &pr
   else if (prm.scene == "hemker")
     scene = std::make_unique<Hemker>(prm.epsilon, prm.variant);
   else
-    throw InputError("invalid value '" + prm.scene +
+    throw InputError(prm.source("scene.name") + ": invalid value '" + prm.scene +
                      "' for key 'scene.name'; expected moving_hump, manufactured, heat, "
                      "boundary_layer or hemker");
   scene->end_time = prm.end_time;
+  }
+  catch (const InputError &e)
+  {
+    const std::string what = e.what();
+    // the scenes' variant errors do not know where the variant came from
+    if (what.rfind("invalid value '" + prm.variant + "' for key 'scene.variant'", 0) == 0)
+      throw InputError(prm.source("scene.variant") + ": " + what);
+    throw;
+  }
   return scene;
 }
 

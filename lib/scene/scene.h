@@ -85,6 +85,18 @@ public:
   /// point goals. Default: the value at the domain's centre (0.5, 0.5) at T.
   virtual std::vector<GoalSpec> default_goals(double radius) const;
 
+  /// The smallest axis-parallel box holding the domain: {lower-left, upper-right}.
+  /// Default: the unit square/cube.
+  virtual std::array<dealii::Point<dim>, 2> bounding_box() const;
+  /// The domain in words, for messages. Default: "[0,1]^2".
+  virtual std::string domain_text() const { return "[0,1]^2"; }
+  /// True if x lies in the closed domain (up to 1e-12 of its size). Default: in the
+  /// bounding box.
+  virtual bool contains(const dealii::Point<dim> &x) const;
+  /// True if the closed box [lo, hi] lies in the closed domain. Default: both corners
+  /// in the bounding box (convex domains).
+  virtual bool contains_box(const dealii::Point<dim> &lo, const dealii::Point<dim> &hi) const;
+
   /// Derived outputs at T (default: over-/undershoots against the exact solution).
   virtual ProbeSpec<dim> probes() const { return {}; }
 

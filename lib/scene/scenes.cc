@@ -6,6 +6,7 @@
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace anisodwr
@@ -340,6 +341,18 @@ void Hemker::make_coarse_grid(dealii::Triangulation<2, 2> &tria) const
 double Hemker::dirichlet_value(const dealii::Point<2> &x, double) const
 {
   return x.norm() < 2. ? 1. : 0.;
+}
+
+bool Hemker::contains(const dealii::Point<2> &x) const
+{
+  return Scene<2>::contains(x) && x.norm() >= 1. - 1e-12;
+}
+
+bool Hemker::contains_box(const dealii::Point<2> &lo, const dealii::Point<2> &hi) const
+{
+  // the point of the box closest to the centre of the hole must not lie in the hole
+  const dealii::Point<2> nearest(std::clamp(0., lo[0], hi[0]), std::clamp(0., lo[1], hi[1]));
+  return Scene<2>::contains_box(lo, hi) && nearest.norm() >= 1. - 1e-12;
 }
 
 std::vector<GoalSpec> Hemker::default_goals(double radius) const

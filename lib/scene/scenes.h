@@ -125,6 +125,17 @@ public:
   {
     return 0.;
   }
+  /// (-3, 8) x (-3, 3) without the open unit disc.
+  std::array<dealii::Point<2>, 2> bounding_box() const override
+  {
+    return {{dealii::Point<2>(-3., -3.), dealii::Point<2>(8., 3.)}};
+  }
+  std::string domain_text() const override
+  {
+    return "[-3,8]x[-3,3] without the open unit disc";
+  }
+  bool contains(const dealii::Point<2> &x) const override;
+  bool contains_box(const dealii::Point<2> &lo, const dealii::Point<2> &hi) const override;
   /// J_1 = int_I u(x_e1, t) dt, J_2 = int_I u(x_e2, t) dt (mollified), x_e1 = (4, 1),
   /// x_e2 = (-2^{-1/2} - 1e-6, 2^{-1/2} + 1e-6).
   std::vector<GoalSpec> default_goals(double radius) const override;

@@ -41,9 +41,36 @@ void guarded_slab_solve(const MarchOptions &options, const std::string &kind,
   {
     throw;
   }
+  catch (const std::bad_alloc &)
+  {
+    throw;
+  }
   catch (const std::exception &e)
   {
-    throw NumericalError(name.str() + ": slab solver failed: " + e.what());
+    // library errors (deal.II, UMFPACK) span many lines with a stack trace: the
+    // message keeps one line ("Additional information" if there is one), the whole
+    // text goes to summary.json
+    const std::string what = e.what();
+    const auto info = what.find("Additional information:");
+    std::string text = info == std::string::npos ? what : what.substr(info + 23);
+    if (const auto end = text.find("Stacktrace"); end != std::string::npos)
+      text.resize(end);
+    std::string line;
+    for (const char c : text)
+      if (c == '\n' || c == '\t' || c == '\r' || c == ' ')
+      {
+        if (!line.empty() && line.back() != ' ')
+          line += ' ';
+      }
+      else if (c != '-' || !line.empty())
+        line += c;
+    while (!line.empty() && line.back() == ' ')
+      line.pop_back();
+    if (line.size() > 300)
+      line = line.substr(0, 297) + "...";
+    throw NumericalError(name.str() + ": slab solver failed: " + line +
+                             (line == what ? "" : " (full text in summary.json)"),
+                         line == what ? "" : what);
   }
   if (!std::isfinite(result.l2_norm()))
     throw NumericalError(name.str() + ": " + kind + " solution contains NaN/Inf");

@@ -44,7 +44,8 @@ std::vector<std::string> split(const std::string &s, char sep)
   return out;
 }
 
-std::vector<double> numbers(const std::string &s, const std::string &key, unsigned int n)
+std::vector<double> numbers(const std::string &s, const std::string &key, unsigned int n,
+                            const std::string &source)
 {
   std::vector<double> v;
   for (const auto &x : split(s, ','))
@@ -52,18 +53,19 @@ std::vector<double> numbers(const std::string &s, const std::string &key, unsign
     {
       std::size_t used = 0;
       v.push_back(std::stod(x, &used));
-      if (used != x.size())
+      if (used != x.size() || !std::isfinite(v.back()))
         throw std::invalid_argument(x);
     }
     catch (const std::exception &)
     {
-      throw InputError("invalid value '" + s + "' in key '" + key + "'; expected " +
-                       std::to_string(n) + " comma-separated numbers");
+      throw InputError(source + ": invalid value '" + s + "' in key '" + key +
+                       "'; expected " + std::to_string(n) +
+                       " comma-separated finite numbers");
     }
   if (v.size() != n)
-    throw InputError("invalid value '" + s + "' in key '" + key + "'; expected " +
-                     std::to_string(n) + " comma-separated numbers, got " +
-                     std::to_string(v.size()));
+    throw InputError(source + ": invalid value '" + s + "' in key '" + key +
+                     "'; expected " + std::to_string(n) +
+                     " comma-separated numbers, got " + std::to_string(v.size()));
   return v;
 }
 
@@ -185,13 +187,17 @@ void write_latex(const std::string &path, const std::vector<LoopRow> &rows)
   f << "\\hline\n\\end{tabular}\n";
 }
 
-void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
-                   const std::vector<LoopRow> &rows, const std::string &status,
-                   const std::string &stop_reason, double wall)
+std::string summary_text(const Parameters &prm, const std::vector<GoalSpec> &goals,
+                         const std::vector<LoopRow> &rows, const std::string &status,
+                         const std::string &stop_reason, double wall,
+                         const std::string &details)
 {
-  std::ofstream f(prm.output_directory + "/summary.json");
-  f << "{\n  \"status\": \"" << status << "\",\n  \"stop_reason\": \"" << stop_reason
-    << "\",\n  \"config\": " << prm.to_json(2) << ",\n  \"goals\": [";
+  std::ostringstream f;
+  f << "{\n  \"status\": \"" << json_escape(status) << "\",\n  \"stop_reason\": \""
+    << json_escape(stop_reason) << "\",\n";
+  if (!details.empty())
+    f << "  \"details\": \"" << json_escape(details) << "\",\n";
+  f << "  \"config\": " << prm.to_json(2) << ",\n  \"goals\": [";
   for (std::size_t g = 0; g < goals.size(); ++g)
     f << (g ? ", " : "") << "\"" << goals[g].name << "\"";
   f << "],\n  \"loops\": [";
@@ -218,6 +224,21 @@ void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
   f << "\n  ],\n  \"wall_time\": " << num(wall)
     << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << ",\n  "
     << solver_totals_json() << "\n}\n";
+  return f.str();
+}
+
+/// Writes summary.json atomically and prepares the one a SIGINT/SIGTERM leaves: the
+/// same rows with status "interrupted".
+void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
+                   const std::vector<LoopRow> &rows, const std::string &status,
+                   const std::string &stop_reason, double wall,
+                   const std::string &details = "")
+{
+  const std::string path = prm.output_directory + "/summary.json";
+  write_file_atomically(path,
+                        summary_text(prm, goals, rows, status, stop_reason, wall, details));
+  set_interrupt_summary(path, summary_text(prm, goals, rows, "interrupted",
+                                           "interrupted (SIGINT/SIGTERM)", wall, ""));
 }
 
 /// J_i(u~) with u~ the patch lift I_2h u_h (the reconstruction behind `auto` weights).
@@ -315,6 +336,7 @@ std::pair<double, double> measure_time_error(const Space<2> &primal, const TimeM
 
 std::vector<GoalSpec> make_goals(const Parameters &prm, const Scene<2> &scene)
 {
+  const std::string where = prm.source("goal.locations");
   std::vector<GoalSpec> goals;
   if (prm.goal_kind == "scene")
     goals = scene.default_goals(prm.goal_radius);
@@ -322,8 +344,8 @@ std::vector<GoalSpec> make_goals(const Parameters &prm, const Scene<2> &scene)
   {
     const auto items = split(prm.goal_locations, ';');
     if (prm.goal_locations.empty() || items.empty())
-      throw InputError("key 'goal.locations' is empty; goal.kind = " + prm.goal_kind +
-                       " needs at least one location");
+      throw InputError(where + ": key 'goal.locations' is empty; goal.kind = " +
+                       prm.goal_kind + " needs at least one location");
     for (std::size_t i = 0; i < items.size(); ++i)
     {
       GoalSpec g;
@@ -332,33 +354,57 @@ std::vector<GoalSpec> make_goals(const Parameters &prm, const Scene<2> &scene)
       g.name = prm.goal_kind + "_" + std::to_string(i + 1);
       if (g.kind == "point")
       {
-        g.center = numbers(items[i], "goal.locations", 2);
+        g.center = numbers(items[i], "goal.locations", 2, where);
         g.radius = prm.goal_radius;
+        if (!scene.contains(Point<2>(g.center[0], g.center[1])))
+          throw InputError(where + ": invalid point '" + items[i] +
+                           "' in key 'goal.locations'; it lies outside the domain " +
+                           scene.domain_text() + " of scene '" + scene.name() + "'");
       }
       else
       {
-        const auto v = numbers(items[i], "goal.locations", 4);
+        const auto v = numbers(items[i], "goal.locations", 4, where);
         g.lower = {v[0], v[1]};
         g.upper = {v[2], v[3]};
         if (!(v[2] > v[0] && v[3] > v[1]))
           throw InputError(
-              "invalid rectangle '" + items[i] +
+              where + ": invalid rectangle '" + items[i] +
               "' in key 'goal.locations'; expected x0,y0,x1,y1 with x1 > x0, "
               "y1 > y0");
+        if (!scene.contains_box(Point<2>(v[0], v[1]), Point<2>(v[2], v[3])))
+          throw InputError(where + ": invalid rectangle '" + items[i] +
+                           "' in key 'goal.locations'; it is not inside the domain " +
+                           scene.domain_text() + " of scene '" + scene.name() + "'");
       }
       goals.push_back(g);
     }
   }
+  // a mollifier wider than the domain is no point goal (and makes J a domain mean)
+  const auto box = scene.bounding_box();
+  const double diameter = box[0].distance(box[1]);
+  for (const auto &g : goals)
+    if (g.kind == "point" && !(g.radius <= diameter))
+    {
+      std::ostringstream d;
+      d << diameter;
+      throw InputError(prm.source("goal.radius") + ": invalid value '" +
+                       json_number(g.radius, 6) +
+                       "' for key 'goal.radius'; expected a number >= 0 and at most the "
+                       "diameter " + d.str() + " of the domain " + scene.domain_text() +
+                       " of scene '" + scene.name() + "'");
+    }
   if (prm.goal_weights != "auto")
   {
     const auto w = split(prm.goal_weights, ',');
     if (w.size() != 1 && w.size() != goals.size())
-      throw InputError("invalid value '" + prm.goal_weights +
+      throw InputError(prm.source("goal.weights") + ": invalid value '" +
+                       prm.goal_weights +
                        "' for key 'goal.weights'; "
                        "expected auto, one number or " +
                        std::to_string(goals.size()) +
                        " comma-separated numbers (one per goal)");
-    const auto v = numbers(prm.goal_weights, "goal.weights", w.size());
+    const auto v =
+        numbers(prm.goal_weights, "goal.weights", w.size(), prm.source("goal.weights"));
     for (std::size_t g = 0; g < goals.size(); ++g)
       goals[g].weight = v[w.size() == 1 ? 0 : g];
   }
@@ -402,6 +448,7 @@ void run_dwr(const Parameters &prm)
   std::vector<std::pair<double, std::string>> vtu_records;
   std::string stop_reason = "max loops";
   Timer wall;
+  write_summary(prm, goals, rows, "running", "", 0.);
   std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.p << ")-dG("
             << prm.r << "), adjoint cG(" << q << "), " << prm.adaptivity_mode
             << ", goals:";
@@ -585,11 +632,8 @@ void run_dwr(const Parameters &prm)
   }
   catch (const std::exception &e)
   {
-    std::string what = e.what();
-    for (auto &c : what)
-      if (c == '"' || c == '\n')
-        c = '\'';
-    write_summary(prm, goals, rows, "failed: " + what, "error", wall.wall_time());
+    write_summary(prm, goals, rows, "failed: " + failure_message(e), "error",
+                  wall.wall_time(), failure_details(e));
     throw;
   }
   write_summary(prm, goals, rows, "ok", stop_reason, wall.wall_time());

@@ -111,30 +111,30 @@ double order(double e_coarse, double e_fine, double ratio)
   return std::log(e_coarse / e_fine) / std::log(ratio);
 }
 
-void write_summary(const Parameters &prm, const std::vector<LevelResult> &levels,
-                   const std::string &status, double wall)
+std::string summary_text(const Parameters &prm, const std::vector<LevelResult> &levels,
+                         const std::string &status, double wall,
+                         const std::string &details = "")
 {
-  std::ofstream f(prm.output_directory + "/summary.json");
-  f << "{\n  \"status\": \"" << status << "\",\n  \"config\": " << prm.to_json(2)
-    << ",\n  \"levels\": [";
+  std::ostringstream f;
+  f << "{\n  \"status\": \"" << json_escape(status) << "\",\n";
+  if (!details.empty())
+    f << "  \"details\": \"" << json_escape(details) << "\",\n";
+  f << "  \"config\": " << prm.to_json(2) << ",\n  \"levels\": [";
   for (std::size_t i = 0; i < levels.size(); ++i)
     f << (i ? ",\n    " : "\n    ") << level_json(levels[i]);
   f << "\n  ],\n  \"wall_time\": " << num(wall)
     << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << ",\n  "
     << solver_totals_json() << "\n}\n";
+  return f.str();
 }
 
-std::string json_escape(const std::string &s)
+void write_summary(const Parameters &prm, const std::vector<LevelResult> &levels,
+                   const std::string &status, double wall, const std::string &details = "")
 {
-  std::string o;
-  for (char c : s)
-    if (c == '"' || c == '\\')
-      o += std::string("\\") + c;
-    else if (c == '\n')
-      o += "\\n";
-    else
-      o += c;
-  return o;
+  const std::string path = prm.output_directory + "/summary.json";
+  write_file_atomically(path, summary_text(prm, levels, status, wall, details));
+  // what a SIGINT/SIGTERM from now on leaves behind
+  set_interrupt_summary(path, summary_text(prm, levels, "interrupted", wall));
 }
 } // namespace
 
@@ -144,6 +144,7 @@ void run_study(const Parameters &prm)
   const auto scene = create_scene<2>(prm);
   Timer timer;
   std::vector<LevelResult> levels;
+  write_summary(prm, levels, "running", 0.);
   try
   {
     if (prm.mode == "single")
@@ -167,6 +168,7 @@ void run_study(const Parameters &prm)
       {
         levels.push_back(solve_level(prm, *scene, l, prm.initial_refinements + (space ? l : 0),
                                      prm.n_slabs << (time ? l : 0), false));
+        write_summary(prm, levels, "running", timer.wall_time());
         const auto &r = levels.back();
         std::array<double, 3> o{{nan, nan, nan}};
         if (l > 0)
@@ -190,7 +192,8 @@ void run_study(const Parameters &prm)
   }
   catch (const std::exception &e)
   {
-    write_summary(prm, levels, "failed: " + json_escape(e.what()), timer.wall_time());
+    write_summary(prm, levels, "failed: " + failure_message(e), timer.wall_time(),
+                  failure_details(e));
     throw;
   }
   write_summary(prm, levels, "ok", timer.wall_time());

@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Reliability of the command line: goals checked against the domain, malformed config
+# files, the output directory lock, atomic summary.json with status interrupted,
+# one-line solver failures and out of memory. Every run is limited to 20 s.
+source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
+cfg=$src/config/moving_hump.json
+hemker=$src/config/hemker.json
+n=0
+expect() { # expect CODE PATTERN -- args...
+  local code=$1 pattern=$2 out rc
+  shift 3
+  n=$((n + 1))
+  out=$(timeout 20 "$bin" "$@" 2>&1)
+  rc=$?
+  if [ "$rc" != "$code" ] || ! grep -q -- "$pattern" <<<"$out"; then
+    echo "FAIL: anisodwr $* -> exit $rc (want $code), output: $(tail -c 400 <<<"$out") (want /$pattern/)"
+    fail=1
+  else
+    echo "ok: anisodwr $* -> $rc: $(head -c 160 <<<"$out")"
+  fi
+}
+o() { echo "$tmp/out$n"; }
+
+# goals against the domain
+pt=(--set goal.kind=point --set adaptivity.loops=1)
+mean=(--set goal.kind=mean --set adaptivity.loops=1)
+expect 2 "--set: invalid point '0,0' in key 'goal.locations'.*outside" -- run "$hemker" --output "$(o)" "${pt[@]}" --set goal.locations=0,0
+expect 2 "invalid point '20,20' in key 'goal.locations'" -- run "$hemker" --output "$(o)" "${pt[@]}" --set goal.locations=20,20
+expect 2 "invalid rectangle '-0.5,-0.5,0.5,0.5' in key 'goal.locations'" -- run "$hemker" --output "$(o)" "${mean[@]}" --set goal.locations=-0.5,-0.5,0.5,0.5
+expect 2 "invalid rectangle '2,2,3,3' in key 'goal.locations'" -- run "$cfg" --output "$(o)" "${mean[@]}" --set goal.locations=2,2,3,3
+expect 2 "invalid point '5,5' in key 'goal.locations'" -- run "$cfg" --output "$(o)" "${pt[@]}" --set goal.locations=5,5
+expect 2 "'nan,0.5' in key 'goal.locations'" -- run "$cfg" --output "$(o)" "${pt[@]}" --set goal.locations=nan,0.5
+expect 2 "'1e+06' for key 'goal.radius'" -- run "$cfg" --output "$(o)" --set goal.radius=1e6
+expect 0 "results:" -- run "$cfg" --output "$(o)" "${pt[@]}" --set goal.locations="0.3,0.3; 1,1"
+
+# config files: top level, directories, unreadable files, nesting
+for top in null 42 '"hello"' '[1, 2]' ''; do
+  printf '%s' "$top" >"$tmp/top.json"
+  expect 2 "top.json: the top level of a config must be a JSON object" -- run "$tmp/top.json" --output "$(o)"
+done
+expect 2 "$tmp: is a directory" -- run "$tmp" --output "$(o)"
+printf '{}' >"$tmp/noread.json"
+chmod 000 "$tmp/noread.json"
+if [ "$(id -u)" != 0 ]; then
+  expect 2 "noread.json: cannot open" -- run "$tmp/noread.json" --output "$(o)"
+fi
+python3 -c "print('{\"scene\": ' + '[' * 100000)" >"$tmp/deep.json"
+expect 2 "deep.json: JSON nested deeper than" -- run "$tmp/deep.json" --output "$(o)"
+python3 -c "print('{\"a\": ' * 100000)" >"$tmp/deep2.json"
+expect 2 "deep2.json: JSON nested deeper than" -- run "$tmp/deep2.json" --output "$(o)"
+
+# messages name their source and the range
+printf '{"scene": {"epsilon": -1}}' >"$tmp/eps.json"
+expect 2 "eps.json: invalid value '-1' for key 'scene.epsilon'; expected a number > 0" -- run "$tmp/eps.json" --output "$(o)"
+expect 2 "^anisodwr: input error: --set: invalid value '0' for key 'scene.epsilon'; expected a number > 0" -- run "$cfg" --output "$(o)" --set scene.epsilon=0
+expect 2 "input error: --set: invalid value '1.5' for key 'adaptivity.theta_tau'" -- run "$cfg" --output "$(o)" --set adaptivity.theta_tau=1.5
+expect 2 "input error: --set: invalid value 'cubic' for key 'scene.variant'" -- run "$cfg" --output "$(o)" --set scene.name=heat --set scene.variant=cubic
+expect 2 "input error: --set: invalid value '1,2,3' for key 'goal.weights'" -- run "$cfg" --output "$(o)" --set goal.weights=1,2,3
+expect 2 "key 'goal.locations' is empty" -- run "$cfg" --output "$(o)" --set goal.kind=point
+printf '{"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "0.5"}}' >"$tmp/loc.json"
+expect 2 "loc.json: invalid value '0.5' in key 'goal.locations'" -- run "$tmp/loc.json" --output "$(o)"
+
+# a failed direct solve: one line on stderr, the full text JSON-escaped in summary.json
+out=$(timeout 20 "$bin" run "$cfg" --output "$tmp/solve" --set adaptivity.loops=1 --set scene.epsilon=1.7e308 2>&1 >/dev/null)
+rc=$?
+if [ "$rc" != 3 ] || [ "$(wc -l <<<"$out")" != 1 ] || ! grep -q "slab solver failed: UMFPACK" <<<"$out" ||
+  ! python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['status'].startswith('failed: loop 1') and '\n' in d['details']" "$tmp/solve/summary.json"; then
+  echo "FAIL: failed direct solve -> exit $rc, stderr: $out"
+  fail=1
+else
+  echo "ok: failed direct solve -> 3: $out"
+fi
+
+# out of memory: exit 3 and summary.json
+out=$( (ulimit -v 2500000 && timeout 60 "$bin" run "$cfg" --output "$tmp/oom" --set study.mode=single \
+  --set discretization.initial_refinements=13) 2>&1)
+rc=$?
+if [ "$rc" != 3 ] || ! grep -q "out of memory" <<<"$out" || ! grep -q '"status": "failed: out of memory' "$tmp/oom/summary.json"; then
+  echo "FAIL: out of memory -> exit $rc, output: $(tail -c 300 <<<"$out")"
+  fail=1
+else
+  echo "ok: out of memory -> 3"
+fi
+
+# the output directory lock, stale files, SIGINT/SIGTERM
+long=(--set adaptivity.loops=10)
+for sig in INT TERM; do
+  d=$tmp/lock$sig
+  "$bin" run "$cfg" --output "$d" "${long[@]}" >"$tmp/first.log" 2>&1 &
+  pid=$!
+  for _ in $(seq 100); do grep -q '"loop": 1' "$d/summary.json" 2>/dev/null && break; sleep 0.1; done
+  expect 2 "output directory '$d' is in use" -- run "$cfg" --output "$d" --set adaptivity.loops=1
+  kill -$sig $pid
+  wait $pid
+  rc=$?
+  want=$((128 + $(kill -l $sig)))
+  if [ "$rc" != "$want" ] || ! grep -q '"status": "interrupted"' "$d/summary.json" ||
+    ! python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$d/summary.json"; then
+    echo "FAIL: SIG$sig -> exit $rc (want $want), summary: $(head -3 "$d/summary.json")"
+    fail=1
+  else
+    echo "ok: SIG$sig -> $rc, status interrupted"
+  fi
+done
+d=$tmp/lockINT
+touch "$d/notes.txt" "$d/loop-0009.vtu"
+expect 0 "results:" -- run "$cfg" --output "$d" --set adaptivity.loops=1
+if [ -e "$d/loop-0009.vtu" ] || [ ! -e "$d/notes.txt" ] || [ -e "$d/summary.json.tmp" ]; then
+  echo "FAIL: stale files of the previous run: $(ls "$d")"
+  fail=1
+else
+  echo "ok: files of the previous run removed, other files kept"
+fi
+exit $fail

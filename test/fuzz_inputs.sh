@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# Fuzz corpus of bad inputs: every --set line and every config file generated here must
+# give exit code 2 within 10 s and a message naming the key (or the file).
+source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
+cfg=$src/config/moving_hump.json
+count=0
+check() { # check PATTERN -- args...
+  local pattern=$1 out rc
+  shift 2
+  count=$((count + 1))
+  out=$(timeout 10 "$bin" run "$@" --output "$tmp/o$count" --set adaptivity.loops=1 2>&1)
+  rc=$?
+  if [ "$rc" != 2 ] || ! grep -qF -- "$pattern" <<<"$out"; then
+    echo "FAIL: $* -> exit $rc (want 2 naming '$pattern'): $(tail -c 300 <<<"$out")"
+    fail=1
+  fi
+}
+# bad values per key: integers, reals, choices, booleans
+ints="discretization.p discretization.r discretization.initial_refinements discretization.n_slabs
+  study.levels adaptivity.loops adaptivity.adjoint_degree solver.restart solver.max_iterations"
+reals="scene.epsilon scene.end_time discretization.delta0 solver.tolerance solver.ilu_fill
+  adaptivity.theta_h adaptivity.theta_tau adaptivity.theta_coarsen adaptivity.tolerance
+  goal.radius solver.auto_threshold adaptivity.max_dofs"
+choices="scene.name discretization.supg_length solver.type solver.krylov solver.preconditioner
+  solver.fallback study.mode study.refine goal.kind adaptivity.mode adaptivity.marking"
+bools="solver.reuse_factorization goal.over_time output.progress"
+for k in $ints; do
+  for v in -1 abc 1.5 99999999999 '' nan; do check "$k" -- "$cfg" --set "$k=$v"; done
+done
+for k in $reals; do
+  for v in -1 abc nan inf 1e999 '' 1,2; do check "$k" -- "$cfg" --set "$k=$v"; done
+done
+for k in scene.epsilon scene.end_time; do check "$k" -- "$cfg" --set "$k=0"; done
+for k in adaptivity.theta_h adaptivity.theta_tau adaptivity.theta_coarsen; do
+  check "$k" -- "$cfg" --set "$k=1.01"
+done
+for k in $choices; do
+  for v in bogus '' 'dwr ' 42; do check "$k" -- "$cfg" --set "$k=$v"; done
+done
+for k in $bools; do
+  for v in maybe 2 ''; do check "$k" -- "$cfg" --set "$k=$v"; done
+done
+for k in scene.epsilonn sceen.name discretization.q goal.location output.dir; do
+  check "${k%%.*}" -- "$cfg" --set "$k=1"
+done
+# goals
+for loc in '5,5' '-0.1,0.5' 'nan,0.5' '0.5' '0.5,0.5,0.5' 'a,b' '0.5,inf' '0.5,0.5; 2,2' ';'; do
+  check "goal.locations" -- "$cfg" --set goal.kind=point --set "goal.locations=$loc"
+done
+for loc in '2,2,3,3' '0.5,0.5,0.2,0.9' '0,0,1' '-1,0,0.5,0.5' '0,0,1,1.5' 'x,0,1,1'; do
+  check "goal.locations" -- "$cfg" --set goal.kind=mean --set "goal.locations=$loc"
+done
+for loc in '0,0' '20,20' '0.5,0.5'; do
+  check "goal.locations" -- "$src/config/hemker.json" --set goal.kind=point --set "goal.locations=$loc"
+done
+for w in 'a' '1,2,3' 'nan' '1,,2'; do check "goal.weights" -- "$cfg" --set "goal.weights=$w"; done
+# config files
+i=0
+while IFS= read -r text; do
+  i=$((i + 1))
+  printf '%s' "$text" >"$tmp/c$i.json"
+  check "c$i.json" -- "$tmp/c$i.json"
+done <<'CORPUS'
+null
+42
+"hello"
+[1, 2]
+[]
+true
+{
+{"scene": }
+{"scene": {"epsilon": 1e-6}
+{"scene": 5}
+{"scene": [1, 2]}
+{"scene": {"epsilon": [1]}}
+{"scene": {"epsilon": {"a": 1}}}
+{"scene": {"epsilon": -1}}
+{"scene": {"name": "nope"}}
+{"scenery": {"name": "heat"}}
+{"scene": {"epsilonn": 1}}
+{"discretization": {"p": 0}}
+{"discretization": {"r": "x"}}
+{"adaptivity": {"theta_h": 2}}
+{"goal": {"radius": -1}}
+{"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "9,9"}}
+{"a": {"b": {"c": {}}}}
+{"scene": {"epsilon": 1e-6}} trailing
+CORPUS
+python3 -c "print('{\"a\": ' * 5000)" >"$tmp/deep.json"
+check "deep.json" -- "$tmp/deep.json"
+python3 -c "print('{\"a\": [' + '[' * 100000)" >"$tmp/deep2.json"
+check "deep2.json" -- "$tmp/deep2.json"
+check "$tmp" -- "$tmp"
+check "missing.json" -- "$tmp/missing.json"
+echo "$count bad inputs checked"
+[ "$count" -ge 100 ] || { echo "FAIL: corpus smaller than 100"; fail=1; }
+exit $fail
