@@ -102,6 +102,15 @@ std::vector<Entry> make_entries()
       {"solver", "ilu_fill", "1", Kind::real, real(0.),
        "ILU(k) level k (riluk, block_ilu, kronecker; rounded) or ILUT fill ratio "
        "(ilut, >= 1)."},
+      {"solver", "stagnation_window", "50", Kind::integer, integer(0, 1000000),
+       "Stagnation detection: a Krylov solve whose residual has not fallen by "
+       "solver.stagnation_factor over the last stagnation_window iterations stops and "
+       "counts as failed (then solver.fallback applies); 0 = off. gmres/fgmres watch "
+       "the implicit residual every iteration, bicgstab runs in chunks of this many "
+       "iterations."},
+      {"solver", "stagnation_factor", "10", Kind::real, real(0.),
+       "Stagnation detection: required residual reduction over "
+       "solver.stagnation_window iterations; <= 1 = off."},
       {"solver", "fallback", "direct", Kind::text, choice("none|direct"),
        "On a failed Krylov solve: none = numerical error (exit code 3) naming loop, "
        "slab, "
@@ -319,6 +328,8 @@ public:
     p.restart = integer("solver.restart");
     p.max_iterations = integer("solver.max_iterations");
     p.ilu_fill = real("solver.ilu_fill");
+    p.stagnation_window = integer("solver.stagnation_window");
+    p.stagnation_factor = real("solver.stagnation_factor");
     p.fallback = get("solver.fallback");
     p.mode = get("study.mode");
     p.refine = get("study.refine");
@@ -469,6 +480,8 @@ std::string Parameters::to_json(unsigned int indent) const
       {"solver.restart", std::to_string(restart)},
       {"solver.max_iterations", std::to_string(max_iterations)},
       {"solver.ilu_fill", num(ilu_fill)},
+      {"solver.stagnation_window", std::to_string(stagnation_window)},
+      {"solver.stagnation_factor", num(stagnation_factor)},
       {"solver.fallback", fallback},
       {"study.mode", mode},
       {"study.refine", refine},

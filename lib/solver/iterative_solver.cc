@@ -4,6 +4,7 @@
 #include <BelosBiCGStabSolMgr.hpp>
 #include <BelosBlockGmresSolMgr.hpp>
 #include <BelosLinearProblem.hpp>
+#include <BelosStatusTest.hpp>
 #include <BelosTpetraAdapter.hpp>
 #include <Ifpack2_Factory.hpp>
 #include <Kokkos_Core.hpp>
@@ -17,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <sstream>
@@ -189,6 +191,67 @@ RCP<Prec> make_ifpack2(const std::string &type, const RCP<const RowMatrix> &A,
   p->compute();
   return p;
 }
+
+/// Thrown by StagnationTest out of Belos' iteration (Belos rethrows it unchanged).
+class Stagnation : public std::runtime_error
+{
+public:
+  Stagnation(unsigned int iterations, double ratio)
+      : std::runtime_error("stagnation"), iterations(iterations), ratio(ratio)
+  {
+  }
+  unsigned int iterations; ///< at detection
+  double ratio;            ///< residual `window` iterations ago / residual now
+};
+
+/// Stagnation detection for (F)GMRES, added to Belos' status tests as the "debug" test
+/// (an OR member that never passes): records the implicit residual norm of each
+/// iteration and throws Stagnation when it has fallen by less than `factor` over the
+/// last `window` iterations. Belos' own tests and iterates are unaffected otherwise.
+class StagnationTest : public Belos::StatusTest<double, MV, OP>
+{
+public:
+  StagnationTest(unsigned int window, double factor) : window(window), factor(factor) {}
+
+  Belos::StatusType checkStatus(Belos::Iteration<double, MV, OP> *it) override
+  {
+    const int k = it->getNumIters();
+    if (k < 0)
+      return Belos::Failed;
+    std::vector<double> norms(1, 0.);
+    it->getNativeResiduals(&norms);
+    const auto ku = static_cast<std::size_t>(k);
+    if (history.size() <= ku)
+      history.resize(ku + 1, std::numeric_limits<double>::quiet_NaN());
+    history[ku] = norms[0];
+    last = static_cast<unsigned int>(k);
+    if (ku > window)
+    {
+      const double before = history[ku - window];
+      // A NaN before (iteration not recorded) never triggers.
+      if (before > 0. && !(norms[0] * factor < before))
+        throw Stagnation(last, norms[0] > 0. ? before / norms[0] : 0.);
+    }
+    return Belos::Failed;
+  }
+  Belos::StatusType getStatus() const override { return Belos::Failed; }
+  void reset() override
+  {
+    history.clear();
+    last = 0;
+  }
+  void print(std::ostream &os, int indent = 0) const override
+  {
+    os << std::string(indent, ' ') << "stagnation test: residual falls by " << factor
+       << " over " << window << " iterations\n";
+  }
+
+private:
+  unsigned int window;
+  double factor;
+  std::vector<double> history; // implicit residual norm by iteration
+  unsigned int last = 0;
+};
 
 /// Preconditioner from the Kronecker form K = T1 (x) S1 + T2 (x) S2.
 ///
@@ -605,47 +668,113 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
       xd[i] = x[i];
     }
   }
-  auto problem = rcp(new Belos::LinearProblem<double, MV, OP>(d.op, X, B));
-  if (!d.prec.is_null())
-    problem->setRightPrec(d.prec);
-  problem->setProblem();
-  auto pl = rcp(new Teuchos::ParameterList);
-  pl->set("Convergence Tolerance", d.o.tolerance);
-  pl->set("Maximum Iterations", static_cast<int>(d.o.max_iterations));
-  pl->set("Verbosity", static_cast<int>(Belos::Errors));
-  pl->set("Implicit Residual Scaling", "Norm of RHS");
-  RCP<Belos::SolverManager<double, MV, OP>> solver;
-  std::string breakdown;
-  if (d.o.krylov == "gmres" || d.o.krylov == "fgmres")
+  const bool watch = d.o.stagnation_window > 0 && d.o.stagnation_factor > 1.;
+  // Belos prints caught exceptions (our Stagnation among them) at verbosity Errors; they
+  // end up in the failure message instead.
+  auto belos_out = rcp(new std::ostringstream);
+  auto make_solver = [&](int max_iterations)
   {
-    pl->set("Num Blocks", static_cast<int>(d.o.restart));
-    pl->set("Maximum Restarts", static_cast<int>(d.o.max_iterations / d.o.restart + 1));
-    pl->set("Explicit Residual Scaling", "Norm of RHS");
-    if (d.o.krylov == "fgmres")
-      pl->set("Flexible Gmres", true);
-    solver = rcp(new Belos::BlockGmresSolMgr<double, MV, OP>(problem, pl));
-  }
-  else if (d.o.krylov == "bicgstab")
-    solver = rcp(new Belos::BiCGStabSolMgr<double, MV, OP>(problem, pl));
-  else
-    throw std::invalid_argument("unknown Krylov method '" + d.o.krylov + "'");
+    auto problem = rcp(new Belos::LinearProblem<double, MV, OP>(d.op, X, B));
+    if (!d.prec.is_null())
+      problem->setRightPrec(d.prec);
+    problem->setProblem();
+    auto pl = rcp(new Teuchos::ParameterList);
+    pl->set("Convergence Tolerance", d.o.tolerance);
+    pl->set("Maximum Iterations", max_iterations);
+    pl->set("Verbosity", static_cast<int>(Belos::Errors));
+    pl->set("Output Stream", Teuchos::rcp_implicit_cast<std::ostream>(belos_out));
+    pl->set("Implicit Residual Scaling", "Norm of RHS");
+    RCP<Belos::SolverManager<double, MV, OP>> solver;
+    if (d.o.krylov == "gmres" || d.o.krylov == "fgmres")
+    {
+      pl->set("Num Blocks", static_cast<int>(d.o.restart));
+      pl->set("Maximum Restarts", static_cast<int>(d.o.max_iterations / d.o.restart + 1));
+      pl->set("Explicit Residual Scaling", "Norm of RHS");
+      if (d.o.krylov == "fgmres")
+        pl->set("Flexible Gmres", true);
+      solver = rcp(new Belos::BlockGmresSolMgr<double, MV, OP>(problem, pl));
+      if (watch)
+        solver->setDebugStatusTest(
+            rcp(new StagnationTest(d.o.stagnation_window, d.o.stagnation_factor)));
+    }
+    else if (d.o.krylov == "bicgstab")
+      solver = rcp(new Belos::BiCGStabSolMgr<double, MV, OP>(problem, pl));
+    else
+      throw std::invalid_argument("unknown Krylov method '" + d.o.krylov + "'");
+    return solver;
+  };
+  auto true_residual = [&]
+  {
+    MV R(d.map, 1);
+    d.op->apply(*X, R);
+    R.update(1., *B, -1.);
+    Teuchos::Array<double> rn(1);
+    R.norm2(rn());
+    return rn[0] / bnorm;
+  };
   Belos::ReturnType ret = Belos::Unconverged;
-  try
+  std::string breakdown, stagnation;
+  if (d.o.krylov == "bicgstab" && watch)
   {
-    ret = solver->solve();
+    // BiCGStab has no per-iteration hook: chunks of `window` iterations, each a fresh
+    // BiCGStab from the current iterate, compared by the true residual. A solve that
+    // converges within the first chunk is the unchunked solve.
+    double before = true_residual();
+    while (stats.iterations < d.o.max_iterations)
+    {
+      const unsigned int chunk =
+          std::min(d.o.stagnation_window, d.o.max_iterations - stats.iterations);
+      auto solver = make_solver(static_cast<int>(chunk));
+      try
+      {
+        ret = solver->solve();
+      }
+      catch (const std::exception &e)
+      {
+        breakdown = e.what();
+      }
+      stats.iterations += static_cast<unsigned int>(solver->getNumIters());
+      if (ret == Belos::Converged || !breakdown.empty())
+        break;
+      const double now = true_residual();
+      if (!(now * d.o.stagnation_factor < before) && stats.iterations < d.o.max_iterations)
+      {
+        std::ostringstream m;
+        m << "stagnated: the residual fell by " << (now > 0. ? before / now : 0.)
+          << " < " << d.o.stagnation_factor << " over the last " << chunk
+          << " iterations";
+        stagnation = m.str();
+        break;
+      }
+      before = now;
+      if (solver->getNumIters() == 0)
+        break; // no progress possible
+    }
   }
-  catch (const std::exception &e)
+  else
   {
-    breakdown = e.what();
+    auto solver = make_solver(static_cast<int>(d.o.max_iterations));
+    try
+    {
+      ret = solver->solve();
+      stats.iterations = static_cast<unsigned int>(solver->getNumIters());
+    }
+    catch (const Stagnation &e)
+    {
+      std::ostringstream m;
+      m << "stagnated: the residual fell by " << e.ratio << " < " << d.o.stagnation_factor
+        << " over the last " << d.o.stagnation_window << " iterations";
+      stagnation = m.str();
+      stats.iterations = e.iterations;
+    }
+    catch (const std::exception &e)
+    {
+      breakdown = e.what();
+      stats.iterations = static_cast<unsigned int>(solver->getNumIters());
+    }
   }
-  stats.iterations = static_cast<unsigned int>(solver->getNumIters());
   // True residual of the returned iterate.
-  MV R(d.map, 1);
-  d.op->apply(*X, R);
-  R.update(1., *B, -1.);
-  Teuchos::Array<double> rn(1);
-  R.norm2(rn());
-  stats.residual = rn[0] / bnorm;
+  stats.residual = true_residual();
   {
     auto xd = X->getData(0);
     for (std::size_t i = 0; i < x.size(); ++i)
@@ -653,7 +782,8 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
   }
   // The implicit (recurrence) residual may converge while the true one stagnates
   // (loss of accuracy); accept a factor 10 of slack on the true residual.
-  const bool ok = breakdown.empty() && std::isfinite(stats.residual) &&
+  const bool ok = breakdown.empty() && stagnation.empty() &&
+                  std::isfinite(stats.residual) &&
                   stats.residual <= 10. * d.o.tolerance &&
                   (ret == Belos::Converged || stats.residual <= d.o.tolerance);
   if (!ok)
@@ -662,6 +792,8 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
     msg << "iterative solver " << name() << " did not converge: " << stats.iterations
         << " iterations (max " << d.o.max_iterations << "), relative residual "
         << stats.residual << " > tolerance " << d.o.tolerance;
+    if (!stagnation.empty())
+      msg << " (" << stagnation << ")";
     if (!breakdown.empty())
       msg << " (breakdown: " << breakdown << ")";
     throw KrylovFailure(msg.str());

@@ -25,6 +25,12 @@ struct IterativeOptions
   unsigned int max_iterations = 500;
   double ilu_fill = 1.;  ///< RILUK/RBILUK level of fill (rounded), ILUT fill ratio
   double ilut_drop = 0.; ///< ILUT drop tolerance
+  /// Stagnation: a solve whose residual has not fallen by stagnation_factor over the
+  /// last stagnation_window iterations stops and counts as failed (window 0 or
+  /// factor <= 1: off). gmres/fgmres watch the implicit residual every iteration;
+  /// bicgstab runs in chunks of `window` iterations and compares true residuals.
+  unsigned int stagnation_window = 50;
+  double stagnation_factor = 10.;
 };
 
 /// "none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker|kronecker_presb"
