@@ -1,6 +1,15 @@
 // Belos + Ifpack2 on Tpetra for slab systems; see iterative_solver.h.
 #include "solver/iterative_solver.h"
 
+#include <deal.II/lac/trilinos_precondition.h>
+
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_Map.h>
+#include <Epetra_MpiComm.h>
+#include <Epetra_MultiVector.h>
+#include <Epetra_Vector.h>
+#include <mpi.h>
+
 #include <BelosBiCGStabSolMgr.hpp>
 #include <BelosBlockGmresSolMgr.hpp>
 #include <BelosLinearProblem.hpp>
@@ -18,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -157,6 +167,107 @@ RCP<Matrix> kron_block_tpetra(const RCP<const Map> &map,
   return M;
 }
 
+/// deal.II's PreconditionBase holds an Epetra_MpiComm, and ML asks MPI for its rank:
+/// MPI must be initialized before the first AMG. Done on first use (only the amg path
+/// needs it) and finalized at exit if we initialized it.
+void ensure_mpi()
+{
+  static const bool done = []
+  {
+    int initialized = 0;
+    MPI_Initialized(&initialized);
+    if (!initialized)
+    {
+      MPI_Init(nullptr, nullptr);
+      std::atexit(
+          []
+          {
+            int finalized = 0;
+            MPI_Finalized(&finalized);
+            if (!finalized)
+              MPI_Finalize();
+          });
+    }
+    return true;
+  }();
+  (void)done;
+}
+
+/// One ML AMG hierarchy (deal.II TrilinosWrappers::PreconditionAMG, Epetra) for a serial
+/// spatial block given as a Tpetra matrix; applied to Tpetra vectors through Epetra
+/// views of their host data (no copies). block_size 2 (the real 2n x 2n form of a complex
+/// shift, interleaved) aggregates the two unknowns of a node together ("PDE equations").
+class AmgBlock
+{
+public:
+  AmgBlock(const Matrix &A, unsigned int block_size, const IterativeOptions &o)
+  {
+    ensure_mpi();
+    comm = std::make_unique<Epetra_MpiComm>(MPI_COMM_SELF);
+    const int n = static_cast<int>(A.getNodeNumRows());
+    map = std::make_unique<Epetra_Map>(n, 0, *comm);
+    std::vector<int> lengths(n);
+    for (int i = 0; i < n; ++i)
+      lengths[i] = static_cast<int>(A.getNumEntriesInLocalRow(i));
+    matrix = std::make_unique<Epetra_CrsMatrix>(Copy, *map, lengths.data(), true);
+    std::vector<int> cols;
+    for (int i = 0; i < n; ++i)
+    {
+      typename Matrix::local_inds_host_view_type c;
+      typename Matrix::values_host_view_type v;
+      A.getLocalRowView(i, c, v);
+      cols.assign(c.data(), c.data() + c.extent(0));
+      matrix->InsertGlobalValues(i, static_cast<int>(cols.size()), v.data(), cols.data());
+    }
+    matrix->FillComplete();
+
+    dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic = false; // ML "NSSA": nonsymmetric smoothed aggregation
+    data.higher_order_elements = false;
+    data.n_cycles = 1;
+    data.w_cycle = false;
+    data.aggregation_threshold = 1e-4;
+    data.smoother_sweeps = 1;
+    data.smoother_overlap = 0;
+    data.smoother_type = o.amg_smoother == "gauss_seidel" ? "Gauss-Seidel"
+                         : o.amg_smoother == "chebyshev"  ? "Chebyshev"
+                                                          : "ILU";
+    data.coarse_type = "Amesos-KLU";
+    if (block_size > 1)
+    {
+      data.constant_modes.assign(block_size, std::vector<bool>(n, false));
+      for (int i = 0; i < n; ++i)
+        data.constant_modes[i % block_size][i] = true;
+    }
+    Teuchos::ParameterList pl;
+    data.set_parameters(pl, modes, *matrix);
+    if (block_size > 1)
+      pl.set("PDE equations", static_cast<int>(block_size));
+    // Constructed only now: its Epetra_MpiComm needs MPI.
+    amg = std::make_unique<dealii::TrilinosWrappers::PreconditionAMG>();
+    amg->initialize(*matrix, pl);
+  }
+
+  void apply(const Vec &in, Vec &out) const
+  {
+    auto x = in.getData();
+    auto y = out.getDataNonConst();
+    const Epetra_Vector ex(View, *map, const_cast<double *>(x.getRawPtr()));
+    Epetra_Vector ey(View, *map, y.getRawPtr());
+    const int err = amg->trilinos_operator().ApplyInverse(ex, ey);
+    if (err != 0)
+      throw std::runtime_error("AMG (ML) application failed, error " +
+                               std::to_string(err));
+  }
+
+private:
+  std::unique_ptr<Epetra_MpiComm> comm;
+  std::unique_ptr<Epetra_Map> map;
+  std::unique_ptr<Epetra_CrsMatrix> matrix; // ML keeps a reference to it
+  std::unique_ptr<Epetra_MultiVector> modes;
+  std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+};
+
 RCP<Prec> make_ifpack2(const std::string &type, const RCP<const RowMatrix> &A,
                        const IterativeOptions &o, LO n_blocks)
 {
@@ -275,6 +386,13 @@ public:
                           bool transpose, const IterativeOptions &o)
       : presb(o.preconditioner == "kronecker_presb"), slab_map(slab_map)
   {
+    if (o.spatial_preconditioner != "ilu" && o.spatial_preconditioner != "amg")
+      throw std::invalid_argument("unknown spatial preconditioner '" +
+                                  o.spatial_preconditioner + "' (ilu or amg)");
+    if (o.amg_smoother != "ilu" && o.amg_smoother != "gauss_seidel" &&
+        o.amg_smoother != "chebyshev")
+      throw std::invalid_argument("unknown AMG smoother '" + o.amg_smoother +
+                                  "' (ilu, gauss_seidel or chebyshev)");
     m = k.T1.m();
     const int mi = static_cast<int>(m);
     dealii::FullMatrix<double> T1(m, m), T2(m, m), T2inv(m, m), G(m, m);
@@ -347,9 +465,17 @@ public:
       }
       else
         blk.matrix = to_tpetra(space_map, S1, blk.shift, &S2, 1., transpose);
-      IterativeOptions io = o;
-      io.ilu_fill = std::max(0., std::round(o.ilu_fill));
-      blk.prec = make_ifpack2("riluk", blk.matrix, io, 1);
+      if (o.spatial_preconditioner == "amg")
+      {
+        blk.amg = std::make_shared<AmgBlock>(*blk.matrix, blk.map.is_null() ? 1 : 2, o);
+        blk.matrix = Teuchos::null; // ML works on its Epetra copy
+      }
+      else
+      {
+        IterativeOptions io = o;
+        io.ilu_fill = std::max(0., std::round(o.ilu_fill));
+        blk.prec = make_ifpack2("riluk", blk.matrix, io, 1);
+      }
       blocks.push_back(blk);
       j += blk.size;
     }
@@ -400,7 +526,7 @@ public:
         if (b->size == 1)
         {
           w1->assign(*y[j0]);
-          b->prec->apply(*w1, *y[j0]);
+          inner(*b, *w1, *y[j0]);
         }
         else if (!presb)
         {
@@ -414,7 +540,7 @@ public:
               in[2 * i + 1] = r2[i];
             }
           }
-          b->prec->apply(*b->in, *b->out);
+          inner(*b, *b->in, *b->out);
           auto out = b->out->getData();
           auto y1 = y[j0]->getDataNonConst();
           auto y2 = y[j0 + 1]->getDataNonConst();
@@ -431,10 +557,10 @@ public:
           Vec &f1 = *y[j0];
           Vec &r2 = *y[j0 + 1];
           w1->update(1., f1, b->rho, r2, 0.); // f1 + f2
-          b->prec->apply(*w1, *h);            // h = y1 + zz
+          inner(*b, *w1, *h);                 // h = y1 + zz
           S1_t->apply(*h, *w2);
           w2->update(1., f1, b->beta); // beta S1 h + f1
-          b->prec->apply(*w2, *w1);    // y1 = (B + beta S1)^{-1}(beta S1 h + f1)
+          inner(*b, *w2, *w1);         // y1 = (B + beta S1)^{-1}(beta S1 h + f1)
           y[j0]->assign(*w1);
           h->update(-1., *w1, 1.); // zz = h - y1
           y[j0 + 1]->update(b->sigma, *h, 0.);
@@ -464,10 +590,18 @@ private:
     unsigned int first = 0, size = 1;
     double shift = 0, alpha = 0, beta = 0, sigma = 0, rho = 0;
     RCP<Matrix> matrix;
-    RCP<Prec> prec;
+    RCP<Prec> prec;                 // ilu
+    std::shared_ptr<AmgBlock> amg; // amg
     RCP<const Map> map; // 2x2 blocks without PRESB: the 2n map and work vectors
     RCP<Vec> in, out;
   };
+  static void inner(const Block &b, const Vec &in, Vec &out)
+  {
+    if (b.amg)
+      b.amg->apply(in, out);
+    else
+      b.prec->apply(in, out);
+  }
   bool presb = false;
   unsigned int m = 1;
   RCP<const Map> slab_map, space_map;
@@ -574,6 +708,8 @@ const char *preconditioner_names()
          "presb";
 }
 
+const char *spatial_preconditioner_names() { return "ilu|amg"; }
+
 struct IterativeSlabSolver::Impl
 {
   IterativeOptions o;
@@ -594,7 +730,12 @@ IterativeSlabSolver::~IterativeSlabSolver() = default;
 
 std::string IterativeSlabSolver::name() const
 {
-  return impl->o.krylov + "+" + impl->o.preconditioner;
+  const auto &o = impl->o;
+  std::string n = o.krylov + "+" + o.preconditioner;
+  if (o.spatial_preconditioner == "amg" &&
+      (o.preconditioner == "kronecker" || o.preconditioner == "kronecker_presb"))
+    n += "(amg-" + o.amg_smoother + ")";
+  return n;
 }
 
 bool IterativeSlabSolver::needs_assembled_matrix(const IterativeOptions &o)
