@@ -3,14 +3,17 @@
 //   anisodwr_bench_solvers SYSTEM P R EPS REFINEMENTS SOLVER [SLABS]
 //     SYSTEM  primal | adjoint (transposed slab systems of the adjoint space)
 //     P       spatial degree of that system (primal Q1/Q2, adjoint Q2/Q4)
-//     SOLVER  direct | KRYLOV+PRECONDITIONER (e.g. gmres+kronecker)
+//     SOLVER  direct | KRYLOV+PRECONDITIONER[@amg[-gs|-cheb]] (e.g. gmres+kronecker,
+//             gmres+kronecker_presb@amg: solver.spatial_preconditioner = amg with the
+//             ILU / Gauss-Seidel / Chebyshev smoother)
 //     SLABS   slabs marched (tau = 0.05 as in config/moving_hump.json), default 3
 //
 // Moving hump, uniform mesh (REFINEMENTS global refinements of the unit square), SUPG
 // delta0 = 1, solver tolerance 1e-10, restart 30, max 500 iterations. Prints one CSV
 // line (header with --header): setup = factorization or preconditioner (incl. the Tpetra
 // copy of K), solve = per slab, peak = VmHWM of the process. Env BENCH_ILU_FILL sets
-// solver.ilu_fill (default 1).
+// solver.ilu_fill (default 1). Env BENCH_ANISO = k refines every cell k more times in y
+// only (aspect ratio 2^k, column aspect_ratio).
 #include "config/errors.h"
 #include "goal/goal.h"
 #include "io/table.h"
@@ -19,6 +22,8 @@
 #include "slab/primal_march.h"
 
 #include <deal.II/grid/tria.h>
+
+#include <mpi.h>
 
 #include <cstdlib>
 #include <iostream>
@@ -35,7 +40,7 @@ namespace
 const char *header =
     "system,p,r,eps,refinements,N_space,N_slab,solver,preconditioner,status,"
     "setup_s,solve_s_per_slab,iters_mean,iters_max,peak_mb,base_mb,load1,"
-    "message";
+    "message,aspect_ratio";
 
 double current_rss_mb()
 {
@@ -85,6 +90,16 @@ int main(int argc, char **argv)
     const auto plus = solver.find('+');
     krylov = solver.substr(0, plus);
     prec = solver.substr(plus + 1);
+    const auto at = prec.find('@');
+    if (at != std::string::npos)
+    {
+      const std::string spatial = prec.substr(at + 1);
+      o.iterative.spatial_preconditioner = "amg";
+      o.iterative.amg_smoother = spatial == "amg-gs"     ? "gauss_seidel"
+                                 : spatial == "amg-cheb" ? "chebyshev"
+                                                         : "ilu";
+      prec = prec.substr(0, at);
+    }
     o.type = "iterative";
     o.iterative.krylov = krylov;
     o.iterative.preconditioner = prec;
@@ -94,11 +109,27 @@ int main(int argc, char **argv)
     if (const char *fill = std::getenv("BENCH_ILU_FILL"))
       o.iterative.ilu_fill = std::stod(fill);
   }
+  // AMG needs MPI (the library initializes it on first use); initialized here, outside
+  // the timed setup, since it is a once-per-process cost (about 1 s for a singleton).
+  const bool amg = o.iterative.spatial_preconditioner == "amg";
+  if (amg)
+  {
+    MPI_Init(nullptr, nullptr);
+    std::atexit([] { MPI_Finalize(); }); // after the slab operator is gone
+  }
   const auto scene = create_scene<2>(
       Parameters::from_overrides({"scene.name=moving_hump", "scene.epsilon=" + eps}));
   Triangulation<2> tria;
   scene->make_coarse_grid(tria);
   tria.refine_global(refs);
+  const unsigned int aniso =
+      std::getenv("BENCH_ANISO") ? std::stoi(std::getenv("BENCH_ANISO")) : 0;
+  for (unsigned int k = 0; k < aniso; ++k)
+  {
+    for (const auto &cell : tria.active_cell_iterators())
+      cell->set_refine_flag(RefinementCase<2>::cut_y);
+    tria.execute_coarsening_and_refinement();
+  }
   Space<2> space(*scene, tria, p, 1.0);
   space.setup();
   const TemporalBasis basis(r);
@@ -128,13 +159,22 @@ int main(int argc, char **argv)
         c = ';';
   }
   const auto &t = op.timings();
+  // With the default solver.fallback = direct a failed Krylov solve is redone by UMFPACK:
+  // that is not an iterative success.
+  if (status == "ok" && t.n_fallbacks > 0)
+  {
+    status = "fallback";
+    message = std::to_string(t.n_fallbacks) + " of " + std::to_string(t.n_solves) +
+              " solves fell back to UMFPACK";
+  }
   const double setup = solver == "direct" ? t.factorize : t.precondition;
   const unsigned int solves = std::max(1u, t.n_solves);
   std::cout << system << "," << p << "," << r << "," << eps << "," << refs << ","
-            << space.n_dofs() << "," << op.n_slab_dofs() << "," << krylov << "," << prec
+            << space.n_dofs() << "," << op.n_slab_dofs() << "," << krylov << ","
+            << (solver == "direct" ? prec : solver.substr(solver.find('+') + 1))
             << "," << status << "," << setup << "," << t.solve / solves << ","
             << (t.n_krylov_solves ? double(t.krylov_iterations) / t.n_krylov_solves : 0.)
             << "," << t.max_krylov_iterations << "," << peak_memory_mb() << "," << base
-            << "," << load1() << ",\"" << message << "\"" << std::endl;
+            << "," << load1() << ",\"" << message << "\"," << (1u << aniso) << std::endl;
   return 0;
 }

@@ -115,6 +115,24 @@ std::vector<Entry> make_entries()
       {"solver", "ilu_fill", "1", Kind::real, real(0.),
        "ILU(k) level k (riluk, block_ilu, kronecker; rounded) or ILUT fill ratio "
        "(ilut, >= 1)."},
+      {"solver", "spatial_preconditioner", "ilu", Kind::text, choice("ilu|amg"),
+       "Inner solver of the kronecker and kronecker_presb preconditioners for each "
+       "temporal mode's spatial matrix (lambda M + A; the 2n x 2n real form or the PRESB "
+       "matrices of complex pairs): ilu = Ifpack2 ILU(k), k = solver.ilu_fill; amg = "
+       "one V-cycle of ML smoothed aggregation for nonsymmetric matrices (NSSA, through "
+       "deal.II's TrilinosWrappers::PreconditionAMG), smoother solver.amg_smoother."},
+      {"solver", "amg_smoother", "ilu", Kind::text, choice("ilu|gauss_seidel|chebyshev"),
+       "Smoother of solver.spatial_preconditioner = amg (one sweep per level): ilu "
+       "(ILU(0)), gauss_seidel or chebyshev."},
+      {"solver", "stagnation_window", "50", Kind::integer, integer(0, 1000000),
+       "Stagnation detection: a Krylov solve whose residual has not fallen by "
+       "solver.stagnation_factor over the last stagnation_window iterations stops and "
+       "counts as failed (then solver.fallback applies); 0 = off. gmres/fgmres watch "
+       "the implicit residual every iteration, bicgstab runs in chunks of this many "
+       "iterations."},
+      {"solver", "stagnation_factor", "10", Kind::real, real(0.),
+       "Stagnation detection: required residual reduction over "
+       "solver.stagnation_window iterations; <= 1 = off."},
       {"solver", "fallback", "direct", Kind::text, choice("none|direct"),
        "On a failed Krylov solve: none = numerical error (exit code 3) naming loop, "
        "slab, "
@@ -418,6 +436,10 @@ public:
     p.restart = integer("solver.restart");
     p.max_iterations = integer("solver.max_iterations");
     p.ilu_fill = real("solver.ilu_fill");
+    p.spatial_preconditioner = get("solver.spatial_preconditioner");
+    p.amg_smoother = get("solver.amg_smoother");
+    p.stagnation_window = integer("solver.stagnation_window");
+    p.stagnation_factor = real("solver.stagnation_factor");
     p.fallback = get("solver.fallback");
     p.mode = get("study.mode");
     p.refine = get("study.refine");
@@ -586,6 +608,10 @@ std::string Parameters::to_json(unsigned int indent) const
       {"solver.restart", std::to_string(restart)},
       {"solver.max_iterations", std::to_string(max_iterations)},
       {"solver.ilu_fill", num(ilu_fill)},
+      {"solver.spatial_preconditioner", spatial_preconditioner},
+      {"solver.amg_smoother", amg_smoother},
+      {"solver.stagnation_window", std::to_string(stagnation_window)},
+      {"solver.stagnation_factor", num(stagnation_factor)},
       {"solver.fallback", fallback},
       {"study.mode", mode},
       {"study.refine", refine},

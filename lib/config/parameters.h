@@ -37,6 +37,10 @@ struct Parameters
   unsigned int restart = 30;
   unsigned int max_iterations = 500;
   double ilu_fill = 1.;
+  std::string spatial_preconditioner = "ilu";
+  std::string amg_smoother = "ilu";
+  unsigned int stagnation_window = 50;
+  double stagnation_factor = 10.;
   std::string fallback = "direct";
 
   // [study]

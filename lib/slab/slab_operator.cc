@@ -36,6 +36,10 @@ SlabSolverOptions slab_solver_options(const Parameters &prm)
   o.iterative.restart = prm.restart;
   o.iterative.max_iterations = prm.max_iterations;
   o.iterative.ilu_fill = prm.ilu_fill;
+  o.iterative.spatial_preconditioner = prm.spatial_preconditioner;
+  o.iterative.amg_smoother = prm.amg_smoother;
+  o.iterative.stagnation_window = prm.stagnation_window;
+  o.iterative.stagnation_factor = prm.stagnation_factor;
   return o;
 }
 

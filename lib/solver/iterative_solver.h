@@ -25,10 +25,24 @@ struct IterativeOptions
   unsigned int max_iterations = 500;
   double ilu_fill = 1.;  ///< RILUK/RBILUK level of fill (rounded), ILUT fill ratio
   double ilut_drop = 0.; ///< ILUT drop tolerance
+  /// Stagnation: a solve whose residual has not fallen by stagnation_factor over the
+  /// last stagnation_window iterations stops and counts as failed (window 0 or
+  /// factor <= 1: off). gmres/fgmres watch the implicit residual every iteration;
+  /// bicgstab runs in chunks of `window` iterations and compares true residuals.
+  /// Inner solver of the kronecker* preconditioners per temporal mode block: "ilu"
+  /// (Ifpack2 ILU(k), ilu_fill) or "amg" (ML smoothed aggregation for nonsymmetric
+  /// matrices through deal.II's TrilinosWrappers::PreconditionAMG on Epetra, one V-cycle
+  /// per application, smoother amg_smoother).
+  std::string spatial_preconditioner = "ilu";
+  std::string amg_smoother = "ilu"; ///< ilu | gauss_seidel | chebyshev
+  unsigned int stagnation_window = 50;
+  double stagnation_factor = 10.;
 };
 
 /// "none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker|kronecker_presb"
 const char *preconditioner_names();
+/// "ilu|amg" (solver.spatial_preconditioner)
+const char *spatial_preconditioner_names();
 
 /// K = T1 (x) S1 + T2 (x) S2 (Kronecker factors in the interleaved ordering, T2
 /// invertible, S1 and S2 on one sparsity pattern): the input of the Kronecker
