@@ -27,6 +27,8 @@ expect 2 "discretization.pp.*did you mean 'p'" -- run "$tmp/typo.json"
 expect 2 "unknown section 'scenery'" -- run "$tmp/section.json"
 expect 2 "scene.epsilon" -- run "$cfg" --set scene.epsilon=0
 expect 2 "scene.epsilon" -- run "$cfg" --set scene.epsilon=-1
+expect 2 "scene.epsilon.*0 < v <= 1e6" -- run "$cfg" --set scene.epsilon=1e300
+expect 2 "scene.end_time.*0 < v <= 1e6" -- run "$cfg" --set scene.end_time=1.7e308
 expect 2 "discretization.r" -- run "$cfg" --set discretization.r=-1
 expect 2 "discretization.p" -- run "$cfg" --set discretization.p=abc
 expect 2 "scene.name" -- run "$cfg" --set scene.name=hemkerr

@@ -51,8 +51,8 @@ expect 2 "deep2.json: JSON nested deeper than" -- run "$tmp/deep2.json" --output
 
 # messages name their source and the range
 printf '{"scene": {"epsilon": -1}}' >"$tmp/eps.json"
-expect 2 "eps.json: invalid value '-1' for key 'scene.epsilon'; expected a number > 0" -- run "$tmp/eps.json" --output "$(o)"
-expect 2 "^anisodwr: input error: --set: invalid value '0' for key 'scene.epsilon'; expected a number > 0" -- run "$cfg" --output "$(o)" --set scene.epsilon=0
+expect 2 "eps.json: invalid value '-1' for key 'scene.epsilon'; expected a number with 0 < v <= 1e6" -- run "$tmp/eps.json" --output "$(o)"
+expect 2 "^anisodwr: input error: --set: invalid value '0' for key 'scene.epsilon'; expected a number with 0 < v <= 1e6" -- run "$cfg" --output "$(o)" --set scene.epsilon=0
 expect 2 "input error: --set: invalid value '1.5' for key 'adaptivity.theta_tau'" -- run "$cfg" --output "$(o)" --set adaptivity.theta_tau=1.5
 expect 2 "input error: --set: invalid value 'cubic' for key 'scene.variant'" -- run "$cfg" --output "$(o)" --set scene.name=heat --set scene.variant=cubic
 expect 2 "input error: --set: invalid value '1,2,3' for key 'goal.weights'" -- run "$cfg" --output "$(o)" --set goal.weights=1,2,3
@@ -61,7 +61,7 @@ printf '{"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "0.5"}
 expect 2 "loc.json: invalid value '0.5' in key 'goal.locations'" -- run "$tmp/loc.json" --output "$(o)"
 
 # a failed direct solve: one line on stderr, the full text JSON-escaped in summary.json
-out=$(timeout 20 "$bin" run "$cfg" --output "$tmp/solve" --set adaptivity.loops=1 --set scene.epsilon=1.7e308 2>&1 >/dev/null)
+out=$(timeout 20 "$bin" run "$cfg" --output "$tmp/solve" --set adaptivity.loops=1 --set discretization.delta0=1e308 2>&1 >/dev/null)
 rc=$?
 if [ "$rc" != 3 ] || [ "$(wc -l <<<"$out")" != 1 ] || ! grep -q "slab solver failed: UMFPACK" <<<"$out" ||
   ! python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['status'].startswith('failed: loop 1') and '\n' in d['details']" "$tmp/solve/summary.json"; then

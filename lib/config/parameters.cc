@@ -64,10 +64,13 @@ std::vector<Entry> make_entries()
        "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
        "alpha), poly_space (rotating coefficients, spatial part in Q2). heat: poly "
        "(default) or trig. moving_hump: none."},
-      {"scene", "epsilon", "1e-6", Kind::real, real(0.), "Diffusion coefficient, > 0.",
-       "a number > 0"},
-      {"scene", "end_time", "0.5", Kind::real, real(0.), "Final time T > 0.",
-       "a number > 0"},
+      {"scene", "epsilon", "1e-6", Kind::real, real(0.),
+       "Diffusion coefficient, 0 < eps <= 1e6 (the scenes are scaled to unit size and "
+       "unit speed; larger values are rejected as meaningless).",
+       "a number with 0 < v <= 1e6"},
+      {"scene", "end_time", "0.5", Kind::real, real(0.),
+       "Final time, 0 < T <= 1e6 (larger values are rejected as meaningless).",
+       "a number with 0 < v <= 1e6"},
       {"discretization", "p", "1", Kind::integer, integer(1, 4),
        "Polynomial degree of FE_Q in space (1..4)."},
       {"discretization", "r", "0", Kind::integer, integer(0, 10),
@@ -468,8 +471,8 @@ public:
     p.output_directory = get("output.directory");
     p.vtu_every = integer("output.vtu_every");
     p.progress = boolean("output.progress");
-    positive("scene.epsilon", p.epsilon);
-    positive("scene.end_time", p.end_time);
+    bounded_positive("scene.epsilon", p.epsilon);
+    bounded_positive("scene.end_time", p.end_time);
     for (const auto &[key, value] : values)
       p.sources[key] = origin(key);
     return p;
@@ -499,11 +502,12 @@ private:
                        "'; expected a fraction in [0, 1]");
     return v;
   }
-  void positive(const std::string &k, double v) const
+  /// 0 < v <= 1e6 (scene.epsilon, scene.end_time)
+  void bounded_positive(const std::string &k, double v) const
   {
-    if (!(v > 0.))
+    if (!(v > 0.) || !(v <= 1e6))
       throw InputError(origin(k) + ": invalid value '" + get(k) + "' for key '" + k +
-                       "'; expected a number > 0");
+                       "'; expected a number with 0 < v <= 1e6");
   }
 };
 
