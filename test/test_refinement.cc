@@ -154,7 +154,9 @@ TEST(Closure, DealIIDefaultClosesTheSameChainIsotropically)
   flag_hanging_node_chain(tria);
   for (const auto &cell : tria.active_cell_iterators())
     if (cell->center()[0] > 1.)
+    {
       EXPECT_EQ(cell->refine_flag_set(), RefinementCase<2>::cut_xy);
+    }
 }
 
 TEST(Closure, AnisotropicClosureNeedsFewerCellsOnAGradedMesh)
