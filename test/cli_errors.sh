@@ -2,19 +2,6 @@
 # Every class of bad input gives exit code 2 and a message naming the key/file/value.
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
 
-expect() { # expect CODE PATTERN -- args...
-  local code=$1 pattern=$2
-  shift 3
-  local out rc
-  out=$("$bin" "$@" 2>&1)
-  rc=$?
-  if [ "$rc" != "$code" ] || ! grep -q -- "$pattern" <<<"$out"; then
-    echo "FAIL: anisodwr $* -> exit $rc (want $code), output: $out (want /$pattern/)"
-    fail=1
-  else
-    echo "ok: anisodwr $* -> $rc: $(head -c 160 <<<"$out")"
-  fi
-}
 
 cfg=$src/config/moving_hump.json
 printf '{ "scene": { "name": "moving_hump", ' >"$tmp/broken.json"

@@ -5,21 +5,7 @@
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
 cfg=$src/config/moving_hump.json
 hemker=$src/config/hemker.json
-n=0
-expect() { # expect CODE PATTERN -- args...
-  local code=$1 pattern=$2 out rc
-  shift 3
-  n=$((n + 1))
-  out=$(timeout 20 "$bin" "$@" 2>&1)
-  rc=$?
-  if [ "$rc" != "$code" ] || ! grep -q -- "$pattern" <<<"$out"; then
-    echo "FAIL: anisodwr $* -> exit $rc (want $code), output: $(tail -c 400 <<<"$out") (want /$pattern/)"
-    fail=1
-  else
-    echo "ok: anisodwr $* -> $rc: $(head -c 160 <<<"$out")"
-  fi
-}
-o() { echo "$tmp/out$n"; }
+expect_timeout=20
 
 # goals against the domain
 pt=(--set goal.kind=point --set adaptivity.loops=1)
