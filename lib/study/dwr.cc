@@ -114,7 +114,7 @@ struct LoopRow
             t_refine,
             mem};
   }
-  /// values() followed by the columns of extra_columns()
+  /// values() followed by the columns all_columns() adds
   std::vector<double> all_values() const
   {
     auto v = values();
@@ -201,12 +201,12 @@ std::string summary_text(const Parameters &prm, const std::vector<GoalSpec> &goa
   for (std::size_t g = 0; g < goals.size(); ++g)
     f << (g ? ", " : "") << "\"" << goals[g].name << "\"";
   f << "],\n  \"loops\": [";
+  const auto names = all_columns(goals);
   for (std::size_t i = 0; i < rows.size(); ++i)
   {
     const auto &r = rows[i];
     f << (i ? ",\n    " : "\n    ") << "{";
     const auto v = r.all_values();
-    const auto names = all_columns(goals);
     for (std::size_t c = 0; c < names.size(); ++c)
       f << (c ? ", " : "") << "\"" << names[c] << "\": " << num(v[c]);
     f << ", \"goals\": {";
@@ -241,13 +241,20 @@ void write_summary(const Parameters &prm, const std::vector<GoalSpec> &goals,
                                            "interrupted (SIGINT/SIGTERM)", wall, ""));
 }
 
+/// The goal with weight 1 (the per-goal values and estimates are unweighted).
+GoalSpec unweighted(const GoalSpec &goal)
+{
+  GoalSpec g = goal;
+  g.weight = 1;
+  return g;
+}
+
 /// J_i(u~) with u~ the patch lift I_2h u_h (the reconstruction behind `auto` weights).
 double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh &mesh,
                    const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
   const SpatialOperators<2> ops(primal.dof_handler(), 2 * primal.degree());
-  GoalSpec g = goal;
-  g.weight = 1;
+  const GoalSpec g = unweighted(goal);
   const LocalGoal<2> local(primal.mapping(), ops.weight_element(),
                            primal.dof_handler().get_triangulation(), {g}, g.over_time);
   const FullMatrix<double> P = ops.interpolation_from(primal.finite_element());
@@ -292,9 +299,7 @@ double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh 
 double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &mesh,
                   const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
-  GoalSpec g = goal;
-  g.weight = 1;
-  return evaluate_goal(assemble_goal_vectors(space, {g}), mesh, basis, U);
+  return evaluate_goal(assemble_goal_vectors(space, {unweighted(goal)}), mesh, basis, U);
 }
 
 TimeIndicator time_indicator(const Parameters &prm)
@@ -395,16 +400,12 @@ std::vector<GoalSpec> make_goals(const Parameters &prm, const Scene<2> &scene)
   const double diameter = box[0].distance(box[1]);
   for (const auto &g : goals)
     if (g.kind == "point" && !(g.radius <= diameter))
-    {
-      std::ostringstream d;
-      d << diameter;
       throw InputError(prm.source("goal.radius") + ": invalid value '" +
                        json_number(g.radius, 6) +
                        "' for key 'goal.radius'; expected a number >= 0 and at most the "
                        "diameter " +
-                       d.str() + " of the domain " + scene.domain_text() + " of scene '" +
-                       scene.name() + "'");
-    }
+                       json_number(diameter, 6) + " of the domain " +
+                       scene.domain_text() + " of scene '" + scene.name() + "'");
   if (prm.goal_weights != "auto")
   {
     const auto w = split(prm.goal_weights, ',');
@@ -537,8 +538,7 @@ void run_dwr(const Parameters &prm)
         if (prm.per_goal_estimates)
           for (const auto &goal : goals)
           {
-            GoalSpec g = goal;
-            g.weight = 1;
+            const GoalSpec g = unweighted(goal);
             const auto Zg = march_adjoint(adjoint, mesh, basis, opq,
                                           assemble_goal_vectors(adjoint, {g}), opt);
             const auto ig =
