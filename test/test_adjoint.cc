@@ -142,7 +142,7 @@ TEST_P(AdjointGoal, PrimalGoalEqualsAdjointFormWithEqualSpaces)
   // <F, Z>: slab loads plus the SUPG initial term on the first slab.
   const unsigned int m = basis.n_dofs();
   Vector<double> F, u0;
-  space.assemble_initial(u0);
+  space.assemble_initial(mesh.tau(0), u0);
   double J_adjoint = 0;
   for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
   {

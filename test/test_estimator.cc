@@ -83,7 +83,7 @@ Vector<double> load(const Space<2> &space, const TemporalBasis &basis,
   if (n == 0)
   {
     Vector<double> u0;
-    space.assemble_initial(u0);
+    space.assemble_initial(mesh.tau(0), u0);
     add_kron_vector(1., basis.left_trace(), u0, F);
   }
   return F;

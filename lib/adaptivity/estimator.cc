@@ -115,7 +115,7 @@ public:
     K = cell;
     fv_p.reinit(cell);
     fv_w.reinit(typename Triangulation<dim>::cell_iterator(cell));
-    delta = primal.delta(cell);
+    delta_h = primal.unbounded_delta(cell);
     if (constant_coefficients)
       build_adjoint_matrices();
     idx.resize(fe_p.n_dofs_per_cell());
@@ -174,7 +174,7 @@ public:
     const unsigned int m1 = basis.n_dofs(), nq = quad.size();
     rho.reset(g.size(), nw);
     supg.reset(g.size(), nw);
-    const double eps = scene.epsilon;
+    const double eps = scene.epsilon, delta = primal.bounded_delta(delta_h, tau);
     Vector<double> &c = scratch[0], &ct = scratch[1], &cn = scratch[2];
     c.reinit(np, true);
     ct.reinit(np, true);
@@ -267,20 +267,23 @@ public:
     if (constant_coefficients)
     {
       // the same functional through the cell matrices: val = wt K z, dt = wt M z
+      // (S' matrices per unit delta_K)
       const auto &Kc = supg ? adj_matrices[2] : adj_matrices[0],
                  &Mc = supg ? adj_matrices[3] : adj_matrices[1];
+      const double scale = supg ? primal.bounded_delta(delta_h, tau) : 1.;
       for (unsigned int m = 0; m < g.size(); ++m)
       {
-        const double wt = tau * omega[m];
+        const double wt = tau * omega[m] * scale;
         Kc.vmult(A.val[m], zt.val[m]);
         A.val[m] *= wt;
         Mc.vmult(A.dt[m], zt.val[m]);
         A.dt[m] *= wt;
       }
       Mc.vmult(A.jump, zt.plus);
+      A.jump *= scale;
       return;
     }
-    const double eps = scene.epsilon;
+    const double eps = scene.epsilon, delta = primal.bounded_delta(delta_h, tau);
     for (unsigned int m = 0; m <= g.size(); ++m) // m == g.size(): the jump at t_{n-1}^+
     {
       const bool jump = m == g.size();
@@ -418,7 +421,7 @@ private:
   std::vector<double> g, omega;
   std::vector<std::vector<double>> ell, dell;
   cell_iterator K;
-  double delta = 0;
+  double delta_h = 0; // delta_K before the bound by tau_n
   std::vector<types::global_dof_index> idx;
   std::vector<Piece> pieces;
   mutable std::array<Vector<double>, 3> scratch; // cell-local coefficient buffers
@@ -448,7 +451,7 @@ private:
         {
           const double zj = fv_w.shape_value(j, q);
           const Tensor<1, dim> &gz = fv_w.shape_grad(j, q);
-          const double test_s = delta * (b * gz);
+          const double test_s = b * gz; // per unit delta_K
           adj_matrices[0](l, j) +=
               jx * (eps * (gphi * gz) + (b * gphi + alpha * phi) * zj);
           adj_matrices[1](l, j) += jx * phi * zj;

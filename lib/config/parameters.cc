@@ -81,6 +81,10 @@ std::vector<Entry> make_entries()
        "Cell length h_K in delta_K = delta0 h_K: volume = |K|^(1/d) (SPEC); streamline = "
        "the "
        "length of K along b at its centre (t = 0), for anisotropic cells across layers."},
+      {"discretization", "supg_tau_factor", "1", Kind::real, real(0.),
+       "Bound delta_K <= supg_tau_factor * tau_n on each slab (tau_n its length), the "
+       "stability condition of SUPG whose test function also multiplies du/dt; 0 drops "
+       "the bound (small slabs on strongly anisotropic meshes then blow up)."},
       {"discretization", "initial_refinements", "2", Kind::integer, integer(0, 14),
        "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},
       {"discretization", "n_slabs", "5", Kind::integer, integer(1, 1000000),
@@ -428,6 +432,7 @@ public:
     p.r = integer("discretization.r");
     p.delta0 = real("discretization.delta0");
     p.supg_length = get("discretization.supg_length");
+    p.supg_tau_factor = real("discretization.supg_tau_factor");
     p.initial_refinements = integer("discretization.initial_refinements");
     p.n_slabs = integer("discretization.n_slabs");
     p.solver_type = get("solver.type");
@@ -601,6 +606,7 @@ std::string Parameters::to_json(unsigned int indent) const
       {"discretization.r", std::to_string(r)},
       {"discretization.delta0", num(delta0)},
       {"discretization.supg_length", supg_length},
+      {"discretization.supg_tau_factor", num(supg_tau_factor)},
       {"discretization.initial_refinements", std::to_string(initial_refinements)},
       {"discretization.n_slabs", std::to_string(n_slabs)},
       {"solver.type", solver_type},

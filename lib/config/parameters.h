@@ -24,6 +24,7 @@ struct Parameters
   unsigned int r = 0;
   double delta0 = 1.0;
   std::string supg_length = "volume";
+  double supg_tau_factor = 1.;
   unsigned int initial_refinements = 2;
   unsigned int n_slabs = 5;
 

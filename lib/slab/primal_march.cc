@@ -21,7 +21,7 @@ void assemble_slab_load(const Space<dim> &space, const TemporalBasis &basis, dou
   Vector<double> Fq;
   for (unsigned int q = 0; q < sq.size(); ++q)
   {
-    space.assemble_load(t0 + sq[q] * tau, Fq);
+    space.assemble_load(t0 + sq[q] * tau, tau, Fq);
     add_kron_vector(tau * wq[q], basis.values(sq[q]), Fq, F);
   }
 }
@@ -85,7 +85,7 @@ march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis 
 {
   std::vector<Vector<double>> U(mesh.n_slabs());
   Vector<double> coupling, last, load;
-  space.assemble_initial(coupling); // (u_0, phi + delta b.grad phi)
+  space.assemble_initial(mesh.tau(0), coupling); // (u_0, phi + delta b.grad phi)
   for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
   {
     const double t0 = mesh.start(n), tau = mesh.tau(n);

@@ -96,10 +96,11 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
   terms_cond.clear();
   if (constant)
   {
-    if (mats.empty())
+    // delta_K <= c tau_n: a new slab length needs new spatial matrices
+    if (mats.empty() || (space.delta_depends_on_tau() && !same_tau))
     {
       mats.resize(1);
-      space.assemble_matrices(0., mats[0]);
+      space.assemble_matrices(0., tau_n, mats[0]);
     }
     FullMatrix<double> tM(basis.mass());
     tM *= tau_n;
@@ -116,7 +117,7 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     mats.resize(sq.size() + 1);
     for (unsigned int q = 0; q < sq.size(); ++q)
     {
-      space.assemble_matrices(t_start + sq[q] * tau_n, mats[q]);
+      space.assemble_matrices(t_start + sq[q] * tau_n, tau_n, mats[q]);
       std::vector<double> l = basis.values(sq[q]), dl(m);
       for (unsigned int k = 0; k < m; ++k)
         dl[k] = basis.derivative(k, sq[q]);
@@ -129,7 +130,7 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
       terms_cond.push_back({Ta, &mats[q].Ac});
     }
     auto &mj = mats.back();
-    space.assemble_matrices(t_start, mj);
+    space.assemble_matrices(t_start, tau_n, mj);
     const FullMatrix<double> Tj = outer(basis.left_trace(), basis.left_trace());
     terms_full.push_back({Tj, &mj.M});
     terms_cond.push_back({Tj, &mj.Mc});

@@ -15,8 +15,10 @@ using namespace dealii;
 
 template <int dim>
 Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria,
-                  unsigned int degree, double delta0, bool streamline_length)
-    : scene(scene), delta0(delta0), streamline_length(streamline_length), fe(degree),
+                  unsigned int degree, double delta0, bool streamline_length,
+                  double tau_factor)
+    : scene(scene), delta0(delta0), streamline_length(streamline_length),
+      tau_factor(tau_factor), fe(degree),
       map(1), dofs(tria)
 {
 }
@@ -49,7 +51,7 @@ void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> 
 }
 
 template <int dim>
-double Space<dim>::delta(const typename Triangulation<dim>::cell_iterator &cell) const
+double Space<dim>::unbounded_delta(const typename Triangulation<dim>::cell_iterator &cell) const
 {
   if (delta0 == 0.)
     return 0.;
@@ -84,7 +86,7 @@ double Space<dim>::delta(const typename Triangulation<dim>::cell_iterator &cell)
   return delta0 * std::pow(cell->measure(), 1.0 / dim);
 }
 
-template <int dim> void Space<dim>::assemble_matrices(double t, SpatialMatrices &m) const
+template <int dim> void Space<dim>::assemble_matrices(double t, double tau, SpatialMatrices &m) const
 {
   for (auto *mat : {&m.M, &m.A, &m.Mc, &m.Ac})
     mat->reinit(pattern);
@@ -101,7 +103,7 @@ template <int dim> void Space<dim>::assemble_matrices(double t, SpatialMatrices 
     fv.reinit(cell);
     cm = 0.;
     ca = 0.;
-    const double dK = delta(cell);
+    const double dK = delta(cell, tau);
     for (unsigned int q = 0; q < quad.size(); ++q)
     {
       const Point<dim> &x = fv.quadrature_point(q);
@@ -136,7 +138,7 @@ template <int dim> void Space<dim>::assemble_matrices(double t, SpatialMatrices 
   }
 }
 
-template <int dim> void Space<dim>::assemble_load(double t, Vector<double> &F) const
+template <int dim> void Space<dim>::assemble_load(double t, double tau, Vector<double> &F) const
 {
   F.reinit(dofs.n_dofs());
   const QGauss<dim> quad(fe.degree + 2);
@@ -154,7 +156,7 @@ template <int dim> void Space<dim>::assemble_load(double t, Vector<double> &F) c
   {
     fv.reinit(cell);
     cf = 0.;
-    const double dK = delta(cell);
+    const double dK = delta(cell, tau);
     for (unsigned int q = 0; q < quad.size(); ++q)
     {
       const Point<dim> &x = fv.quadrature_point(q);
@@ -184,7 +186,7 @@ template <int dim> void Space<dim>::assemble_load(double t, Vector<double> &F) c
   }
 }
 
-template <int dim> void Space<dim>::assemble_initial(Vector<double> &U0) const
+template <int dim> void Space<dim>::assemble_initial(double tau, Vector<double> &U0) const
 {
   U0.reinit(dofs.n_dofs());
   const QGauss<dim> quad(fe.degree + 2);
@@ -197,7 +199,7 @@ template <int dim> void Space<dim>::assemble_initial(Vector<double> &U0) const
   {
     fv.reinit(cell);
     cell->get_dof_indices(idx);
-    const double dK = delta(cell);
+    const double dK = delta(cell, tau);
     for (unsigned int q = 0; q < quad.size(); ++q)
     {
       const Point<dim> &x = fv.quadrature_point(q);

@@ -10,6 +10,8 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <algorithm>
+
 #include "scene/scene.h"
 
 namespace anisodwr
@@ -26,9 +28,12 @@ template <int dim> class Space
 {
 public:
   /// SUPG: delta_K = delta0 h_K with h_K = |K|^{1/dim} (SPEC §2), or, if
-  /// `streamline_length`, h_K = the length of K along b (for anisotropic cells).
+  /// `streamline_length`, h_K = the length of K along b (for anisotropic cells); if
+  /// tau_factor > 0, delta_K <= tau_factor * tau_n on a slab of length tau_n (the
+  /// stability bound of SUPG with the time derivative in the test function).
   Space(const Scene<dim> &scene, const dealii::Triangulation<dim> &tria,
-        unsigned int degree, double delta0, bool streamline_length = false);
+        unsigned int degree, double delta0, bool streamline_length = false,
+        double tau_factor = 0.);
 
   /// Distributes DoFs, builds constraints and the sparsity pattern (call after
   /// refinement).
@@ -45,24 +50,39 @@ public:
   /// Hanging nodes + Dirichlet values u_D(., t).
   void make_dirichlet_constraints(double t, dealii::AffineConstraints<double> &c) const;
 
-  /// M(t), A(t) and their condensed forms.
-  void assemble_matrices(double t, SpatialMatrices &m) const;
+  /// M(t), A(t) and their condensed forms on a slab of length tau (delta_K's bound).
+  void assemble_matrices(double t, double tau, SpatialMatrices &m) const;
   /// F_i(t) = (f(t), phi_i + delta_K b(t).grad phi_i) + (u_N(t), phi_i)_{Gamma_N}.
-  void assemble_load(double t, dealii::Vector<double> &F) const;
-  /// (u_0, phi_i + delta_K b(0).grad phi_i): the SUPG initial term.
-  void assemble_initial(dealii::Vector<double> &U0) const;
+  void assemble_load(double t, double tau, dealii::Vector<double> &F) const;
+  /// (u_0, phi_i + delta_K b(0).grad phi_i): the SUPG initial term (tau: the first
+  /// slab's length).
+  void assemble_initial(double tau, dealii::Vector<double> &U0) const;
 
   /// L2 norm of u(t) - u_h over the domain (u_h a full, constraint-distributed vector).
   double l2_error(const dealii::Vector<double> &uh, double t) const;
 
-  /// SUPG parameter delta_K of a cell.
-  double delta(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
+  /// SUPG parameter delta_K of a cell on a slab of length tau.
+  double delta(const typename dealii::Triangulation<dim>::cell_iterator &cell,
+               double tau) const
+  {
+    return bounded_delta(unbounded_delta(cell), tau);
+  }
+  /// delta0 h_K, before the bound by tau_n.
+  double unbounded_delta(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
+  /// min(d, tau_factor * tau) (d if tau_factor == 0).
+  double bounded_delta(double d, double tau) const
+  {
+    return tau_factor > 0 ? std::min(d, tau_factor * tau) : d;
+  }
+  /// Whether delta_K (and so M, A and the loads) depends on the slab length.
+  bool delta_depends_on_tau() const { return tau_factor > 0 && delta0 > 0; }
 
   const Scene<dim> &scene;
 
 private:
   double delta0;
   bool streamline_length;
+  double tau_factor;
   dealii::FE_Q<dim> fe;
   dealii::MappingQ<dim> map;
   dealii::DoFHandler<dim> dofs;

@@ -480,7 +480,8 @@ void run_dwr(const Parameters &prm)
       row.loop = loop;
       Indicators<2> ind;
       {
-        Space<2> primal(*scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline");
+        Space<2> primal(*scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline",
+                         prm.supg_tau_factor);
         primal.setup();
         row.n_space = primal.n_dofs();
         row.n_t = mesh.n_slabs();
@@ -522,7 +523,8 @@ void run_dwr(const Parameters &prm)
               primal, mesh, basis, slab_solver_options(prm), goals, row.J, opt);
 
         t.restart();
-        Space<2> adjoint(*scene, tria, q, prm.delta0, prm.supg_length == "streamline");
+        Space<2> adjoint(*scene, tria, q, prm.delta0, prm.supg_length == "streamline",
+                         prm.supg_tau_factor);
         adjoint.setup();
         SlabOperator<2> opq(adjoint, basis, slab_solver_options(prm));
         const auto Z = march_adjoint(adjoint, mesh, basis, opq,

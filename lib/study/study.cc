@@ -73,7 +73,8 @@ LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned i
   Triangulation<2> tria;
   scene.make_coarse_grid(tria);
   tria.refine_global(refinements);
-  Space<2> space(scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline");
+  Space<2> space(scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline",
+                         prm.supg_tau_factor);
   space.setup();
   const TemporalBasis basis(prm.r);
   const TimeMesh mesh = TimeMesh::uniform(scene.end_time, n_slabs);
