@@ -209,6 +209,7 @@ TEST(Iterative, AutoPicksBySlabSize)
   const TemporalBasis basis(1);
   SlabSolverOptions o;
   o.type = "auto";
+  o.auto_memory_mb = 1e-9; // no factorization fits: the size threshold decides
   o.auto_threshold = 4. * s.space->n_dofs(); // = N_space (r+1)^2: iterative
   SlabOperator<2> big(*s.space, basis, o);
   big.prepare(0., 0.05);
@@ -222,6 +223,35 @@ TEST(Iterative, AutoPicksBySlabSize)
   const Parameters prm = Parameters::from_overrides({});
   EXPECT_EQ(prm.solver_type, "auto");
   EXPECT_EQ(slab_solver_options(prm).auto_threshold, 1e6);
+}
+
+TEST(Iterative, AutoKeepsAReusedFactorizationThatFits)
+{
+  SlabProblem s("moving_hump", "", 1, 1e-6);
+  const TemporalBasis basis(1);
+  SlabSolverOptions o;
+  o.type = "auto";
+  o.auto_threshold = 1.; // above the size threshold
+  const double n = 2. * s.space->n_dofs();
+  o.auto_memory_mb = predicted_lu_mb(n, 1);
+  SlabOperator<2> fits(*s.space, basis, o);
+  fits.prepare(0., 0.05);
+  EXPECT_FALSE(fits.iterative()); // constant coefficients: one LU for all slabs
+  // without reuse (or with factors over the budget) the size threshold decides
+  o.reuse_factorization = false;
+  SlabOperator<2> no_reuse(*s.space, basis, o);
+  no_reuse.prepare(0., 0.05);
+  EXPECT_TRUE(no_reuse.iterative());
+  o.reuse_factorization = true;
+  o.auto_memory_mb = 0.99 * predicted_lu_mb(n, 1);
+  SlabOperator<2> over(*s.space, basis, o);
+  over.prepare(0., 0.05);
+  EXPECT_TRUE(over.iterative());
+  // the prediction grows faster than n and is larger for Q2 than for Q1
+  EXPECT_GT(predicted_lu_mb(2e6, 1), 2. * predicted_lu_mb(1e6, 1));
+  EXPECT_GT(predicted_lu_mb(1e6, 2), predicted_lu_mb(1e6, 1));
+  // measured UMFPACK factors (doc/results.md): 2.1e6 unknowns (Q1) about 6 GB
+  EXPECT_NEAR(predicted_lu_mb(2.1e6, 1), 6000., 1500.);
 }
 } // namespace
 

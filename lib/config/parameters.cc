@@ -91,8 +91,10 @@ std::vector<Entry> make_entries()
        "Number of equal time slabs."},
       {"solver", "type", "auto", Kind::text, choice("direct|iterative|auto"),
        "Slab solver: direct (UMFPACK), iterative (Belos Krylov method solver.krylov "
-       "with solver.preconditioner, Trilinos), or auto: iterative iff N_space (r+1)^2 >= "
-       "solver.auto_threshold, else direct."},
+       "with solver.preconditioner, Trilinos), or auto: UMFPACK while one factorization "
+       "serves all slabs (coefficients constant in time, equal slabs) and its predicted "
+       "factors fit in solver.auto_memory_mb; otherwise iterative iff N_space (r+1)^2 >= "
+       "solver.auto_threshold."},
       {"solver", "reuse_factorization", "true", Kind::boolean, boolean,
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
        "unchanged (same tau, coefficients constant in time)."},
@@ -100,6 +102,11 @@ std::vector<Entry> make_entries()
        "solver.type = auto: iterative iff N_space (r+1)^2 (slab unknowns times the "
        "temporal block size, which UMFPACK's cost follows) reaches this (README 'Slab "
        "solvers': from there gmres+kronecker_presb is faster and 2-4x smaller)."},
+      {"solver", "auto_memory_mb", "0", Kind::real, real(0.),
+       "solver.type = auto: largest predicted UMFPACK factor size (MB) for which a "
+       "factorization reused over the slabs is preferred to a Krylov solver (measured "
+       "150 n log2(n) bytes for Q1, 200 for Q2+, n = slab unknowns); 0 = a third of the "
+       "physical memory."},
       {"solver", "krylov", "gmres", Kind::text, choice("gmres|fgmres|bicgstab"),
        "Iterative solver: gmres (restarted, right preconditioned), fgmres (flexible) or "
        "bicgstab (Belos)."},
@@ -209,11 +216,14 @@ std::vector<Entry> make_entries()
        "Wall-time budget in seconds (0: none): no new loop starts when the time so far "
        "plus twice the last loop's time would exceed it."},
       {"adaptivity", "time_indicator", "average", Kind::text,
-       choice("average|adjoint_residual"),
+       choice("average|adjoint_residual|higher_order"),
        "Form of eta_tau. average: 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u); "
        "adjoint_residual: rho*(u,z)(E u - u), exact up to the reconstruction of the "
        "primal alone; use it when the adjoint is not resolved in time (point goals at T "
-       "with |b| tau >> goal.radius, see doc/results.md)."},
+       "with |b| tau >> goal.radius, see doc/results.md); higher_order: rho*(u,z)(u' - u) "
+       "with u' the primal solved once more in dG(r+1) (one more primal solve per loop), "
+       "which does not rely on dG(r)'s nodal superconvergence and sees the temporal error "
+       "at T."},
       {"adaptivity", "per_goal_estimates", "false", Kind::boolean, boolean,
        "Also solve one adjoint per goal and report each goal's own eta_tau h and I_eff "
        "(loops.csv: eta_<goal>, I_eff_<goal>), so that cancellation between goals in the "
@@ -438,6 +448,7 @@ public:
     p.solver_type = get("solver.type");
     p.reuse_factorization = boolean("solver.reuse_factorization");
     p.solver_auto_threshold = real("solver.auto_threshold");
+    p.solver_auto_memory_mb = real("solver.auto_memory_mb");
     p.krylov = get("solver.krylov");
     p.preconditioner = get("solver.preconditioner");
     p.solver_tolerance = real("solver.tolerance");
@@ -612,6 +623,7 @@ std::string Parameters::to_json(unsigned int indent) const
       {"solver.type", solver_type},
       {"solver.reuse_factorization", reuse_factorization ? "true" : "false"},
       {"solver.auto_threshold", num(solver_auto_threshold)},
+      {"solver.auto_memory_mb", num(solver_auto_memory_mb)},
       {"solver.krylov", krylov},
       {"solver.preconditioner", preconditioner},
       {"solver.tolerance", num(solver_tolerance)},

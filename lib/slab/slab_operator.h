@@ -37,8 +37,11 @@ struct SlabSolverOptions
 {
   std::string type = "direct"; ///< direct | iterative | auto
   bool reuse_factorization = true;
-  /// auto: iterative iff N_space (r+1)^2 >= auto_threshold.
+  /// auto: UMFPACK while one factorization serves all slabs and its predicted size
+  /// (predicted_lu_mb) is at most auto_memory_mb (0: a third of the physical memory);
+  /// otherwise iterative iff N_space (r+1)^2 >= auto_threshold.
   double auto_threshold = 1e6;
+  double auto_memory_mb = 0.;
   std::string fallback = "direct"; ///< none | direct
   IterativeOptions iterative;
 
@@ -59,6 +62,15 @@ struct SolverTotals
 const SolverTotals &solver_totals();
 /// `"solver_fallbacks": n, "krylov": {...}` (JSON members, no braces).
 std::string solver_totals_json();
+
+/// Predicted UMFPACK factor size (MB) of an n x n slab matrix of FE_Q(degree): measured
+/// 150 n log2(n) bytes for Q1 and 200 for Q2 and higher (doc/results.md, "Slab solvers").
+double predicted_lu_mb(double n, unsigned int degree);
+
+/// Which solver solver.type = auto picks (true: iterative) for n slab unknowns with m
+/// temporal DoFs per node, given whether one factorization serves all slabs.
+bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
+                          unsigned int degree, bool factorization_reused);
 
 /// The solver section of the run parameters.
 SlabSolverOptions slab_solver_options(const Parameters &prm);

@@ -304,8 +304,10 @@ double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &m
 
 TimeIndicator time_indicator(const Parameters &prm)
 {
-  return prm.time_indicator == "average" ? TimeIndicator::average
-                                         : TimeIndicator::adjoint_residual;
+  if (prm.time_indicator == "average")
+    return TimeIndicator::average;
+  return prm.time_indicator == "adjoint_residual" ? TimeIndicator::adjoint_residual
+                                                  : TimeIndicator::higher_order;
 }
 
 /// The temporal part of the goal error on the current spatial mesh, measured: the
@@ -497,8 +499,22 @@ void run_dwr(const Parameters &prm)
         opt.label = "loop " + std::to_string(loop);
         opt.progress = false;
         Timer t;
-        SlabOperator<2> op(primal, basis, slab_solver_options(prm));
-        const auto U = march_primal(primal, mesh, basis, op, opt);
+        std::vector<Vector<double>> U;
+        {
+          // (the primal's factors are freed before the adjoint factorizes)
+          SlabOperator<2> op(primal, basis, slab_solver_options(prm));
+          U = march_primal(primal, mesh, basis, op, opt);
+        }
+        // the dG(r+1) primal of time_indicator = higher_order
+        const TemporalBasis basis_hi(prm.r + 1);
+        std::vector<Vector<double>> U_hi;
+        if (time_indicator(prm) == TimeIndicator::higher_order)
+        {
+          SlabOperator<2> op(primal, basis_hi, slab_solver_options(prm));
+          U_hi = march_primal(primal, mesh, basis_hi, op, opt);
+        }
+        const HigherOrderPrimal hi{basis_hi, U_hi};
+        const HigherOrderPrimal *hi_ptr = U_hi.empty() ? nullptr : &hi;
         row.t_primal = t.wall_time();
 
         for (std::size_t g = 0; g < goals.size(); ++g)
@@ -532,7 +548,7 @@ void run_dwr(const Parameters &prm)
         row.t_adjoint = t.wall_time();
 
         t.restart();
-        ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, time_indicator(prm));
+        ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, time_indicator(prm), hi_ptr);
         row.t_estimate = t.wall_time();
         for (double e : ind.eta_tau_slab)
           if (!std::isfinite(e))
@@ -544,7 +560,7 @@ void run_dwr(const Parameters &prm)
             const auto Zg = march_adjoint(adjoint, mesh, basis, opq,
                                           assemble_goal_vectors(adjoint, {g}), opt);
             const auto ig =
-                estimate(primal, adjoint, mesh, basis, U, Zg, {g}, time_indicator(prm));
+                estimate(primal, adjoint, mesh, basis, U, Zg, {g}, time_indicator(prm), hi_ptr);
             row.eta_goal.push_back(ig.eta_h_total() + ig.eta_tau);
           }
         row.eta_h = ind.eta_h;
