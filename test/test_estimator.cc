@@ -6,6 +6,7 @@
 // anisotropic cells), polynomial-in-space data, time-dependent b and alpha.
 #include "adaptivity/estimator.h"
 #include "config/parameters.h"
+#include "slab/adjoint_march.h"
 #include "slab/primal_march.h"
 
 #include <deal.II/dofs/dof_tools.h>
@@ -176,3 +177,62 @@ INSTANTIATE_TEST_SUITE_P(TemporalDegree, Localization, ::testing::Values(0u, 1u,
 INSTANTIATE_TEST_SUITE_P(TemporalDegreeAndCoefficients, AdjointLocalization,
                          ::testing::Combine(::testing::Values(0u, 1u, 2u),
                                             ::testing::Values("poly_space", "constant")));
+
+// TimeIndicator::higher_order: eta_tau = rho*(u, z)(u_r+1 - u) + J_T(u_r+1(T) - u(T)).
+// Heat with u = (x^2 - x)(y^2 - y)(-t/4): Q2 in space, linear in t, so dG(1) (u_r+1)
+// is exact and dG(0) (u) is not; with q = p and b = 0 (no SUPG), the discrete adjoint
+// lies in the primal test space, Galerkin orthogonality removes A(u_r+1 - u, z), and
+// eta_tau equals the temporal error J(u_r+1) - J(u) to round-off, for a goal at T and a
+// goal over I (means over unions of cells, which the estimator's goal representation in
+// the weight space and the goal vectors integrate exactly; other goals differ by
+// quadrature). The Radau reconstruction E u - u vanishes at the nodes, so the
+// adjoint_residual form misses J_T's end part: the contrast shows the test can fail.
+TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
+{
+  const auto scene = create_scene<2>(Parameters::from_overrides(
+      {"scene.name=heat", "scene.variant=poly", "scene.epsilon=0.1"}));
+  Triangulation<2> tria;
+  make_mesh(tria);
+  Space<2> space(*scene, tria, 2, 0.);
+  space.setup();
+  const TemporalBasis basis(0), basis_hi(1);
+  const TimeMesh mesh = TimeMesh::uniform(0.5, 4);
+  SlabOperator<2> op(space, basis, SlabSolverOptions::direct(true));
+  SlabOperator<2> op_hi(space, basis_hi, SlabSolverOptions::direct(true));
+  const auto U = march_primal(space, mesh, basis, op, MarchOptions{});
+  const auto U_hi = march_primal(space, mesh, basis_hi, op_hi, MarchOptions{});
+  GoalSpec at_T, over_I;
+  at_T.name = "mean_T";
+  at_T.kind = "mean";
+  at_T.lower = {0.25, 0.25}; // rectangles on cell faces: both goal representations
+  at_T.upper = {0.75, 0.75}; // integrate them exactly
+  over_I.name = "mean_I";
+  over_I.kind = "mean";
+  over_I.lower = {0.5, 0.};
+  over_I.upper = {1., 0.5};
+  over_I.over_time = true;
+  over_I.weight = 0.5;
+  for (const auto &goals : std::vector<std::vector<GoalSpec>>{{at_T}, {over_I}, {at_T, over_I}})
+  {
+    const GoalVectors j = assemble_goal_vectors(space, goals);
+    const auto Z = march_adjoint(space, mesh, basis, op, j, MarchOptions{});
+    const double err_tau = evaluate_goal(j, mesh, basis_hi, U_hi) - evaluate_goal(j, mesh, basis, U);
+    const HigherOrderPrimal hi{basis_hi, U_hi};
+    const auto ind = estimate(space, space, mesh, basis, U, Z, goals,
+                              TimeIndicator::higher_order, &hi);
+    EXPECT_GT(std::abs(err_tau), 1e-5);
+    EXPECT_NEAR(ind.eta_tau, err_tau, 1e-9 * std::abs(err_tau)) << goals.size() << " goal(s)";
+    double slab_sum = 0;
+    for (const double e : ind.eta_tau_slab)
+      slab_sum += e;
+    EXPECT_NEAR(slab_sum, ind.eta_tau, 1e-12 * std::abs(err_tau));
+    if (goals.size() == 1 && !goals[0].over_time)
+    {
+      const auto radau = estimate(space, space, mesh, basis, U, Z, goals,
+                                  TimeIndicator::adjoint_residual);
+      EXPECT_GT(std::abs(radau.eta_tau - err_tau), 1e-3 * std::abs(err_tau));
+    }
+  }
+  EXPECT_THROW(estimate(space, space, mesh, basis, U, U, {at_T}, TimeIndicator::higher_order),
+               std::invalid_argument);
+}

@@ -547,8 +547,14 @@ Indicators<dim>
 estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
          const TemporalBasis &basis, const std::vector<Vector<double>> &U,
          const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
-         const TimeIndicator time_indicator)
+         const TimeIndicator time_indicator, const HigherOrderPrimal *hi)
 {
+  if ((time_indicator == TimeIndicator::higher_order) != (hi != nullptr))
+    throw std::invalid_argument(
+        "estimate: the higher_order time indicator needs the dG(r+1) primal (and only it)");
+  if (hi && (hi->basis.n_dofs() != basis.n_dofs() + 1 || hi->U.size() != mesh.n_slabs()))
+    throw std::invalid_argument("estimate: the higher-order primal must be dG(r+1) on the "
+                                "same slabs");
   const auto &tria = primal.dof_handler().get_triangulation();
   const SpatialOperators<dim> ops(primal.dof_handler(), weight_degree(primal, adjoint));
   const auto &fe_w = ops.weight_element();
@@ -601,6 +607,21 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       E_z[m][d] = recon.adjoint(kernel.point(m), d == 1);
       E_u[m][d] = recon.primal(kernel.point(m), d == 1);
     }
+
+  // the dG(r+1) basis at the temporal Gauss points (values, derivatives per unit s)
+  const unsigned int m2 = hi ? hi->basis.n_dofs() : 0;
+  std::vector<std::vector<double>> hi_val, hi_der;
+  if (hi)
+    for (unsigned int m = 0; m < kernel.n_points(); ++m)
+    {
+      hi_val.push_back(hi->basis.values(kernel.point(m)));
+      std::vector<double> d(m2);
+      for (unsigned int k = 0; k < m2; ++k)
+        d[k] = hi->basis.derivative(k, kernel.point(m));
+      hi_der.push_back(d);
+    }
+  std::vector<Vector<double>> hk(m2);
+  Vector<double> e_prev(nw);
 
   std::vector<types::global_dof_index> idx_q(adjoint.finite_element().n_dofs_per_cell());
   SlabFunctional rho, supg, A_rh, S_rh, A_z, Jf;
@@ -745,7 +766,53 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       eu.plus = u_prev;   // E u(t_{n-1}) - u(t_{n-1}^+)
       eu.plus -= u.plus;
       // J'(E u - u): the part over I (E u - u vanishes at t_n, so the end part is 0)
-      const double jv = apply(Jf, eu, false);
+      double jv = apply(Jf, eu, false);
+      if (hi)
+      {
+        // E u := u_r+1: values and derivatives at the Gauss points, the jump of
+        // e = u_r+1 - u at t_{n-1} (e(t_0^-) = 0: both start from u_0), and J_T(e(T))
+        for (unsigned int k = 0; k < m2; ++k)
+          gather(hi->U[n], idx, m2, k, P, hk[k]);
+        for (unsigned int m = 0; m < kernel.n_points(); ++m)
+        {
+          vu = 0.;
+          tmp = 0.;
+          for (unsigned int k = 0; k < m2; ++k)
+          {
+            vu.add(hi_val[m][k], hk[k]);
+            tmp.add(hi_der[m][k] / tau, hk[k]);
+          }
+          vu -= u.val[m];
+          tmp -= u.dt[m];
+          eu.val[m] = vu;
+          eu.dt[m] = tmp;
+        }
+        eu.plus = 0.;
+        for (unsigned int k = 0; k < m2; ++k)
+          eu.plus.add(hi->basis.left_trace()[k], hk[k]);
+        eu.plus -= u.plus;
+        if (n > 0)
+        {
+          e_prev = 0.;
+          for (unsigned int k = 0; k < m2; ++k)
+          {
+            gather(hi->U[n - 1], idx, m2, k, P, tmp);
+            e_prev.add(hi->basis.right_trace()[k], tmp);
+          }
+          e_prev -= u_prev; // u(t_{n-1}^-)
+          eu.plus -= e_prev;
+        }
+        jv = apply(Jf, eu, false);
+        if (last && jT.size())
+        {
+          vT = 0.;
+          for (unsigned int k = 0; k < m2; ++k)
+            vT.add(hi->basis.right_trace()[k], hk[k]);
+          for (unsigned int k = 0; k < m1; ++k)
+            vT.add(-basis.right_trace()[k], uk[k]);
+          jv += jT * vT;
+        }
+      }
       const double half_rho = 0.5 * apply(rho, ez, false),
                    half_rhostar = 0.5 * (jv - apply(A_z, eu, true));
       const double eta_tau = time_indicator == TimeIndicator::average
@@ -891,6 +958,7 @@ template Indicators<2> estimate<2>(const Space<2> &, const Space<2> &, const Tim
                                    const TemporalBasis &,
                                    const std::vector<Vector<double>> &,
                                    const std::vector<Vector<double>> &,
-                                   const std::vector<GoalSpec> &, TimeIndicator);
+                                   const std::vector<GoalSpec> &, TimeIndicator,
+                                   const HigherOrderPrimal *);
 template struct LocalizedForms<2>;
 } // namespace anisodwr

@@ -67,7 +67,21 @@ enum class TimeIndicator
   /// only the primal has to be resolved in time; the primal-residual form needs
   /// E z - z ~ z - z_tau h, which fails when the adjoint is a pulse crossing the
   /// mollifier in a fraction of a slab (moving hump: |b| tau / s = 18).
-  adjoint_residual
+  adjoint_residual,
+  /// rho*(u,z)(u_r+1 - u) with u_r+1 the primal solved once more in dG(r+1) on the same
+  /// slabs and mesh (HigherOrderPrimal), including J_T's end part J_T(u_r+1(T) - u(T)).
+  /// The Radau reconstruction E u assumes dG(r)'s nodal superconvergence (E u - u = 0
+  /// at t_n), which a layer that crosses a slab destroys; u_r+1 does not. For q = p,
+  /// no SUPG and u_r+1 = u, eta_tau = J(u) - J(u_tau h) exactly.
+  higher_order
+};
+
+/// The primal solved once more in dG(r+1) (basis.degree() = r+1) on the same slabs and
+/// spatial space (TimeIndicator::higher_order).
+struct HigherOrderPrimal
+{
+  const TemporalBasis &basis;
+  const std::vector<dealii::Vector<double>> &U;
 };
 
 /// Primal u (FE_Q(p), `primal`) and adjoint z (FE_Q(q), `adjoint`) on the same mesh;
@@ -77,7 +91,8 @@ Indicators<dim>
 estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
          const TemporalBasis &basis, const std::vector<dealii::Vector<double>> &U,
          const std::vector<dealii::Vector<double>> &Z, const std::vector<GoalSpec> &goals,
-         TimeIndicator time_indicator = TimeIndicator::average);
+         TimeIndicator time_indicator = TimeIndicator::average,
+         const HigherOrderPrimal *higher_order = nullptr);
 
 /// The localized forms summed over all cells, one value per slab, for given global
 /// functions (for the localization tests). u in `primal`'s space; the weights w, y, v
