@@ -18,12 +18,13 @@ void assemble_slab_load(const Space<dim> &space, const TemporalBasis &basis, dou
   std::vector<double> sq, wq;
   gauss_rule(m + 1, sq, wq);
   F.reinit(space.n_dofs() * m);
-  Vector<double> Fq;
+  std::vector<double> times(sq.size());
   for (unsigned int q = 0; q < sq.size(); ++q)
-  {
-    space.assemble_load(t0 + sq[q] * tau, tau, Fq);
-    add_kron_vector(tau * wq[q], basis.values(sq[q]), Fq, F);
-  }
+    times[q] = t0 + sq[q] * tau;
+  std::vector<Vector<double>> Fq;
+  space.assemble_loads(times, tau, Fq);
+  for (unsigned int q = 0; q < sq.size(); ++q)
+    add_kron_vector(tau * wq[q], basis.values(sq[q]), Fq[q], F);
 }
 
 void guarded_slab_solve(const MarchOptions &options, const std::string &kind,

@@ -140,7 +140,19 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
 
 template <int dim> void Space<dim>::assemble_load(double t, double tau, Vector<double> &F) const
 {
-  F.reinit(dofs.n_dofs());
+  std::vector<Vector<double>> loads(1);
+  assemble_loads({t}, tau, loads);
+  F.swap(loads[0]);
+}
+
+template <int dim>
+void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
+                                std::vector<Vector<double>> &F) const
+{
+  // one pass over the cells for all times: the shape values are computed once
+  F.resize(times.size());
+  for (auto &f : F)
+    f.reinit(dofs.n_dofs());
   const QGauss<dim> quad(fe.degree + 2);
   const QGauss<dim - 1> fquad(fe.degree + 2);
   FEValues<dim> fv(map, fe, quad,
@@ -155,34 +167,46 @@ template <int dim> void Space<dim>::assemble_load(double t, double tau, Vector<d
   for (const auto &cell : dofs.active_cell_iterators())
   {
     fv.reinit(cell);
-    cf = 0.;
-    const double dK = delta(cell, tau);
-    for (unsigned int q = 0; q < quad.size(); ++q)
-    {
-      const Point<dim> &x = fv.quadrature_point(q);
-      const Tensor<1, dim> b = scene.convection(x, t);
-      const double f = scene.rhs(x, t) * fv.JxW(q);
-      for (unsigned int i = 0; i < n; ++i)
-        cf(i) += f * (fv.shape_value(i, q) + dK * (b * fv.shape_grad(i, q)));
-    }
-    if (!scene.neumann_ids.empty())
-      for (const auto face : cell->face_indices())
-        if (cell->at_boundary(face) &&
-            scene.neumann_ids.count(cell->face(face)->boundary_id()))
-        {
-          ffv.reinit(cell, face);
-          for (unsigned int q = 0; q < fquad.size(); ++q)
-          {
-            const double g =
-                scene.neumann_value(ffv.quadrature_point(q), ffv.normal_vector(q), t) *
-                ffv.JxW(q);
-            for (unsigned int i = 0; i < n; ++i)
-              cf(i) += g * ffv.shape_value(i, q);
-          }
-        }
     cell->get_dof_indices(idx);
-    for (unsigned int i = 0; i < n; ++i)
-      F(idx[i]) += cf(i);
+    const double dK = delta(cell, tau);
+    for (std::size_t k = 0; k < times.size(); ++k)
+    {
+      const double t = times[k];
+      cf = 0.;
+      for (unsigned int q = 0; q < quad.size(); ++q)
+      {
+        const Point<dim> &x = fv.quadrature_point(q);
+        const double f = scene.rhs(x, t) * fv.JxW(q);
+        if (f == 0.)
+          continue;
+        if (dK == 0.)
+          for (unsigned int i = 0; i < n; ++i)
+            cf(i) += f * fv.shape_value(i, q);
+        else
+        {
+          const Tensor<1, dim> b = scene.convection(x, t);
+          for (unsigned int i = 0; i < n; ++i)
+            cf(i) += f * (fv.shape_value(i, q) + dK * (b * fv.shape_grad(i, q)));
+        }
+      }
+      if (!scene.neumann_ids.empty())
+        for (const auto face : cell->face_indices())
+          if (cell->at_boundary(face) &&
+              scene.neumann_ids.count(cell->face(face)->boundary_id()))
+          {
+            ffv.reinit(cell, face);
+            for (unsigned int q = 0; q < fquad.size(); ++q)
+            {
+              const double g =
+                  scene.neumann_value(ffv.quadrature_point(q), ffv.normal_vector(q), t) *
+                  ffv.JxW(q);
+              for (unsigned int i = 0; i < n; ++i)
+                cf(i) += g * ffv.shape_value(i, q);
+            }
+          }
+      for (unsigned int i = 0; i < n; ++i)
+        F[k](idx[i]) += cf(i);
+    }
   }
 }
 

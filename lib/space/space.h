@@ -54,6 +54,9 @@ public:
   void assemble_matrices(double t, double tau, SpatialMatrices &m) const;
   /// F_i(t) = (f(t), phi_i + delta_K b(t).grad phi_i) + (u_N(t), phi_i)_{Gamma_N}.
   void assemble_load(double t, double tau, dealii::Vector<double> &F) const;
+  /// The loads F(t_k) for several times of one slab (one pass over the cells).
+  void assemble_loads(const std::vector<double> &times, double tau,
+                      std::vector<dealii::Vector<double>> &F) const;
   /// (u_0, phi_i + delta_K b(0).grad phi_i): the SUPG initial term (tau: the first
   /// slab's length).
   void assemble_initial(double tau, dealii::Vector<double> &U0) const;
