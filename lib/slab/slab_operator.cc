@@ -23,6 +23,12 @@ std::string solver_totals_json()
          ", \"max_iterations\": " + std::to_string(totals.max_krylov_iterations) + "}";
 }
 
+bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m)
+{
+  return options.type == "iterative" ||
+         (options.type == "auto" && n_space * m * m >= options.auto_threshold);
+}
+
 SlabSolverOptions slab_solver_options(const Parameters &prm)
 {
   SlabSolverOptions o;
@@ -141,9 +147,7 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     kron = {basis.derivative_with_jump(), tM, &mid.Mc, &mid.Ac};
   }
   time.assemble_spatial += timer.wall_time();
-  use_iterative = opt.type == "iterative" ||
-                  (opt.type == "auto" &&
-                   double(n_slab_dofs()) * basis.n_dofs() >= opt.auto_threshold);
+  use_iterative = solves_iteratively(opt, space.n_dofs(), m);
   krylov[0].reset();
   krylov[1].reset();
   lu_valid = false;

@@ -60,6 +60,10 @@ const SolverTotals &solver_totals();
 /// `"solver_fallbacks": n, "krylov": {...}` (JSON members, no braces).
 std::string solver_totals_json();
 
+/// True if `options` solve the slab system of a space with n_space DoFs and a dG basis
+/// of m functions iteratively (type iterative, or auto with n_space m^2 >= threshold).
+bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m);
+
 /// The solver section of the run parameters.
 SlabSolverOptions slab_solver_options(const Parameters &prm);
 
