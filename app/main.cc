@@ -21,8 +21,10 @@ Usage:
   anisodwr defaults        print the complete default config (documented JSON; "#key" = doc)
   anisodwr --help
 
-Exit codes: 0 success, 2 bad input (file, JSON, key, value, output directory in use),
-3 numerical failure or out of memory, 130/143 interrupted (SIGINT/SIGTERM).
+Exit codes: 0 success, 2 bad input (file, JSON, key, value, output directory in use) or
+a run / DWR loop not started because its memory estimate exceeds adaptivity.max_memory_mb
+(0: the physical memory), 3 numerical failure or out of memory, 130/143 interrupted
+(SIGINT/SIGTERM).
 Outputs (in output.directory): summary.json, convergence.csv (study.mode = convergence),
 solution.pvd + solution-NNNN.vtu (study.mode = single).
 )";
@@ -83,6 +85,11 @@ int main(int argc, char **argv)
                                             : ", solution.pvd")
               << ")\n";
     return exit_ok;
+  }
+  catch (const ResourceLimitError &e)
+  {
+    std::cerr << "anisodwr: stopped: " << e.what() << std::endl;
+    return exit_input_error;
   }
   catch (const InputError &e)
   {

@@ -13,6 +13,15 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+/// A run or DWR loop not started because its memory estimate exceeds the limit
+/// (adaptivity.max_memory_mb or the physical memory). Exit code 2, like bad input:
+/// the configuration asks for more than the budget.
+class ResourceLimitError : public InputError
+{
+public:
+  using InputError::InputError;
+};
+
 /// Numerical failure (solver failure, NaN/Inf). The program exits with code 3.
 /// The message names the DWR loop / study level and the slab.
 /// what() is one line; details() holds the full text of a library error (written to

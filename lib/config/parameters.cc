@@ -210,8 +210,12 @@ std::vector<Entry> make_entries()
       {"adaptivity", "max_dofs", "0", Kind::real, real(0.),
        "Stop before a loop whose N_tot would exceed this (0: no budget)."},
       {"adaptivity", "max_memory_mb", "0", Kind::real, real(0.),
-       "Memory budget in MB (0: none): no new loop starts when the peak memory so far "
-       "times the last loop's growth of N_tot would exceed it."},
+       "Memory budget in MB (0: the physical memory). Before each DWR loop (and "
+       "before a single run or convergence level) the peak memory is estimated from "
+       "the DoFs of the primal and adjoint spaces, r, the number of slabs and the "
+       "solver (DWR: scaled by the last loop's measured/estimated peak when that is "
+       "above 1); a loop whose estimate exceeds the budget is not started: exit code "
+       "2, summary.json status 'stopped'."},
       {"adaptivity", "max_wall_time", "0", Kind::real, real(0.),
        "Wall-time budget in seconds (0: none): no new loop starts when the time so far "
        "plus twice the last loop's time would exceed it."},

@@ -50,6 +50,14 @@ bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m
   return n * m >= opt.auto_threshold;
 }
 
+bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
+                        unsigned int degree, bool factorization_reused)
+{
+  return options.type == "iterative" ||
+         (options.type == "auto" &&
+          auto_picks_iterative(options, n_space * m, m, degree, factorization_reused));
+}
+
 SlabSolverOptions slab_solver_options(const Parameters &prm)
 {
   SlabSolverOptions o;
@@ -170,10 +178,8 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     kron = {basis.derivative_with_jump(), tM, &mid.Mc, &mid.Ac};
   }
   time.assemble_spatial += timer.wall_time();
-  use_iterative = opt.type == "iterative" ||
-                  (opt.type == "auto" &&
-                   auto_picks_iterative(opt, double(n_slab_dofs()), basis.n_dofs(),
-                                        space.degree(), constant && reuse));
+  use_iterative =
+      solves_iteratively(opt, space.n_dofs(), basis.n_dofs(), space.degree(), constant && reuse);
   krylov[0].reset();
   krylov[1].reset();
   lu_valid = false;

@@ -72,6 +72,12 @@ double predicted_lu_mb(double n, unsigned int degree);
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused);
 
+/// True if `options` solve the slab system of a space of FE_Q(degree) with n_space DoFs
+/// and a dG basis of m functions iteratively (type iterative, or auto_picks_iterative
+/// for n_space m unknowns).
+bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
+                        unsigned int degree, bool factorization_reused);
+
 /// The solver section of the run parameters.
 SlabSolverOptions slab_solver_options(const Parameters &prm);
 

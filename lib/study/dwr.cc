@@ -1,4 +1,5 @@
 #include "study/dwr.h"
+#include "study/memory_estimate.h"
 #include "study/probes.h"
 
 #include "adaptivity/estimator.h"
@@ -87,6 +88,8 @@ struct LoopRow
   /// adaptivity.measure_time_error: J_w(u_h) - J_w(u_tau h) on this spatial mesh,
   /// extrapolated from the time mesh bisected once and twice (NaN when not measured)
   double err_tau = nan, err_tau_order = nan;
+  /// memory estimate of the loop (MB), made before it started (study/memory_estimate.h)
+  double mem_estimate = nan;
   /// adaptivity.per_goal_estimates: eta_tau h of each goal from its own adjoint
   std::vector<double> eta_goal;
   MarkingStats marking; ///< the refinement that follows this loop (zeros on the last)
@@ -129,7 +132,7 @@ struct LoopRow
     v.insert(v.end(),
              {eta_tau_rho, eta_tau_rhostar, err_tau, err_tau_order,
               double(marking.marked), double(marking.cut_x), double(marking.cut_y),
-              double(marking.cut_both), double(marking.closure)});
+              double(marking.cut_both), double(marking.closure), mem_estimate});
     return v;
   }
 };
@@ -144,7 +147,7 @@ const std::vector<std::string> columns{
 /// I_eff (adaptivity.per_goal_estimates; else empty), the two halves of eta_tau, the
 /// measured temporal error (adaptivity.measure_time_error; else empty), and
 /// the cells of the refinement after the loop: marked, cut in x only, in y only, in
-/// both, and flagged or extended by the closure.
+/// both, and flagged or extended by the closure; last the loop's memory estimate.
 std::vector<std::string> all_columns(const std::vector<GoalSpec> &goals)
 {
   auto c = columns;
@@ -152,7 +155,8 @@ std::vector<std::string> all_columns(const std::vector<GoalSpec> &goals)
     for (const auto &g : goals)
       c.push_back(prefix + g.name);
   c.insert(c.end(), {"eta_tau_rho", "eta_tau_rhostar", "err_tau", "err_tau_order",
-                     "marked", "marked_x", "marked_y", "marked_xy", "closure"});
+                     "marked", "marked_x", "marked_y", "marked_xy", "closure",
+                     "memory_estimate_mb"});
   return c;
 }
 
@@ -461,6 +465,11 @@ void run_dwr(const Parameters &prm)
   std::vector<LoopRow> rows;
   std::vector<std::pair<double, std::string>> vtu_records;
   std::string stop_reason = "max loops";
+  // the memory estimate: the process before the loops' data, the limit, and the last
+  // loop's measured/estimated peak (>= 1) that scales the next estimate
+  const double base_mb = resident_memory_mb();
+  const MemoryLimit mem_limit = memory_limit(prm);
+  double mem_ratio = 1.;
   Timer wall;
   write_summary(prm, goals, rows, "running", "", 0.);
   std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.p << ")-dG("
@@ -485,6 +494,9 @@ void run_dwr(const Parameters &prm)
         Space<2> primal(*scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline",
                          prm.supg_tau_factor);
         primal.setup();
+        Space<2> adjoint(*scene, tria, q, prm.delta0, prm.supg_length == "streamline",
+                         prm.supg_tau_factor);
+        adjoint.setup();
         row.n_space = primal.n_dofs();
         row.n_t = mesh.n_slabs();
         row.n_tot = row.n_space * row.n_t * basis.n_dofs();
@@ -495,6 +507,16 @@ void run_dwr(const Parameters &prm)
                         " > adaptivity.max_dofs";
           break;
         }
+        const MemoryModel model = memory_model(prm, primal, &adjoint, row.n_t, base_mb);
+        row.mem_estimate = estimate_memory(model).total_mb;
+        check_memory("loop " + std::to_string(loop), row.mem_estimate * mem_ratio,
+                     mem_limit, model,
+                     mem_ratio > 1. ? " (the model's " +
+                                          json_number(std::round(row.mem_estimate), 10) +
+                                          " MB times " + json_number(mem_ratio, 3) +
+                                          ", loop " + std::to_string(loop - 1) +
+                                          "'s measured/estimated peak)"
+                                    : "");
         MarchOptions opt;
         opt.label = "loop " + std::to_string(loop);
         opt.progress = false;
@@ -539,9 +561,6 @@ void run_dwr(const Parameters &prm)
               primal, mesh, basis, slab_solver_options(prm), goals, row.J, opt);
 
         t.restart();
-        Space<2> adjoint(*scene, tria, q, prm.delta0, prm.supg_length == "streamline",
-                         prm.supg_tau_factor);
-        adjoint.setup();
         SlabOperator<2> opq(adjoint, basis, slab_solver_options(prm));
         const auto Z = march_adjoint(adjoint, mesh, basis, opq,
                                      assemble_goal_vectors(adjoint, goals), opt);
@@ -611,14 +630,6 @@ void run_dwr(const Parameters &prm)
         stop = true;
         stop_reason = "tolerance";
       }
-      else if (prm.max_memory_mb > 0 &&
-               peak_memory_mb() * (rows.empty() ? 1. : row.n_tot / rows.back().n_tot) >
-                   prm.max_memory_mb)
-      {
-        // the next loop's peak is predicted from this one's and the last DoF growth
-        stop = true;
-        stop_reason = "memory budget";
-      }
       else if (prm.max_wall_time > 0 &&
                wall.wall_time() + 2. * (row.t_primal + row.t_adjoint + row.t_estimate) >
                    prm.max_wall_time)
@@ -635,6 +646,7 @@ void run_dwr(const Parameters &prm)
         row.t_refine = t.wall_time();
       }
       row.mem = peak_memory_mb();
+      mem_ratio = std::max(1., row.mem / row.mem_estimate);
       rows.push_back(row);
       table.add_row(row.all_values());
       {
@@ -658,6 +670,12 @@ void run_dwr(const Parameters &prm)
       if (stop)
         break;
     }
+  }
+  catch (const ResourceLimitError &e)
+  {
+    // not started: the finished loops stay, the reason is the message
+    write_summary(prm, goals, rows, "stopped", e.what(), wall.wall_time());
+    throw;
   }
   catch (const std::exception &e)
   {

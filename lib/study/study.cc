@@ -6,6 +6,7 @@
 #include "scene/scene.h"
 #include "slab/primal_march.h"
 #include "study/errors.h"
+#include "study/memory_estimate.h"
 
 #include <deal.II/base/timer.h>
 #include <deal.II/grid/grid_tools.h>
@@ -34,6 +35,7 @@ struct LevelResult
   ErrorNorms err;
   bool has_exact = false;
   double t_total = 0;
+  double memory_estimate_mb = 0;
   SlabTimings slab;
   std::vector<std::string> vtu_files;
 };
@@ -52,7 +54,8 @@ std::string level_json(const LevelResult &r)
   if (r.has_exact)
     s << ", \"err_L2_T\": " << num(r.err.L2_T) << ", \"err_nodal\": " << num(r.err.nodal)
       << ", \"err_L2L2\": " << num(r.err.L2L2);
-  s << ", \"wall_time\": {\"total\": " << num(r.t_total)
+  s << ", \"memory_estimate_mb\": " << num(r.memory_estimate_mb)
+    << ", \"wall_time\": {\"total\": " << num(r.t_total)
     << ", \"assemble_spatial\": " << num(r.slab.assemble_spatial)
     << ", \"assemble_slab\": " << num(r.slab.assemble_slab)
     << ", \"factorize\": " << num(r.slab.factorize)
@@ -62,10 +65,11 @@ std::string level_json(const LevelResult &r)
 }
 
 /// Solves the primal problem on the scene's mesh refined `refinements` times with
-/// `n_slabs` equal slabs.
+/// `n_slabs` equal slabs. Not started (ResourceLimitError) if its memory estimate, with
+/// the process's resident memory base_mb before the first level, exceeds `limit`.
 LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned int level,
                         unsigned int refinements, unsigned int n_slabs,
-                        bool write_vtu_files)
+                        bool write_vtu_files, double base_mb, const MemoryLimit &limit)
 {
   Timer timer;
   LevelResult res;
@@ -76,6 +80,10 @@ LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned i
   Space<2> space(scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline",
                          prm.supg_tau_factor);
   space.setup();
+  const MemoryModel model = memory_model(prm, space, nullptr, n_slabs, base_mb);
+  res.memory_estimate_mb = estimate_memory(model).total_mb;
+  check_memory(prm.mode == "convergence" ? "level " + std::to_string(level) : "run",
+               res.memory_estimate_mb, limit, model);
   const TemporalBasis basis(prm.r);
   const TimeMesh mesh = TimeMesh::uniform(scene.end_time, n_slabs);
   SlabOperator<2> op(space, basis, slab_solver_options(prm));
@@ -120,10 +128,13 @@ double order(double e_coarse, double e_fine, double ratio)
 
 std::string summary_text(const Parameters &prm, const std::vector<LevelResult> &levels,
                          const std::string &status, double wall,
-                         const std::string &details = "")
+                         const std::string &details = "",
+                         const std::string &stop_reason = "")
 {
   std::ostringstream f;
   f << "{\n  \"status\": \"" << json_escape(status) << "\",\n";
+  if (!stop_reason.empty())
+    f << "  \"stop_reason\": \"" << json_escape(stop_reason) << "\",\n";
   if (!details.empty())
     f << "  \"details\": \"" << json_escape(details) << "\",\n";
   f << "  \"config\": " << prm.to_json(2) << ",\n  \"levels\": [";
@@ -137,10 +148,11 @@ std::string summary_text(const Parameters &prm, const std::vector<LevelResult> &
 
 void write_summary(const Parameters &prm, const std::vector<LevelResult> &levels,
                    const std::string &status, double wall,
-                   const std::string &details = "")
+                   const std::string &details = "", const std::string &stop_reason = "")
 {
   const std::string path = prm.output_directory + "/summary.json";
-  write_file_atomically(path, summary_text(prm, levels, status, wall, details));
+  write_file_atomically(path,
+                        summary_text(prm, levels, status, wall, details, stop_reason));
   // what a SIGINT/SIGTERM from now on leaves behind
   set_interrupt_summary(path, summary_text(prm, levels, "interrupted", wall));
 }
@@ -151,6 +163,8 @@ void run_study(const Parameters &prm)
   make_directory(prm.output_directory);
   const auto scene = create_scene<2>(prm);
   Timer timer;
+  const double base_mb = resident_memory_mb();
+  const MemoryLimit limit = memory_limit(prm);
   std::vector<LevelResult> levels;
   write_summary(prm, levels, "running", 0.);
   try
@@ -158,7 +172,8 @@ void run_study(const Parameters &prm)
     if (prm.mode == "single")
     {
       levels.push_back(
-          solve_level(prm, *scene, 0, prm.initial_refinements, prm.n_slabs, true));
+          solve_level(prm, *scene, 0, prm.initial_refinements, prm.n_slabs, true,
+                                  base_mb, limit));
       const auto &r = levels.back();
       std::cout << "N_space = " << r.n_space << ", N_t = " << r.n_t
                 << ", N_tot = " << r.n_tot << ", wall time " << r.t_total << " s\n";
@@ -177,7 +192,8 @@ void run_study(const Parameters &prm)
       {
         levels.push_back(solve_level(prm, *scene, l,
                                      prm.initial_refinements + (space ? l : 0),
-                                     prm.n_slabs << (time ? l : 0), false));
+                                     prm.n_slabs << (time ? l : 0), false, base_mb,
+                                     limit));
         write_summary(prm, levels, "running", timer.wall_time());
         const auto &r = levels.back();
         std::array<double, 3> o{{nan, nan, nan}};
@@ -202,6 +218,12 @@ void run_study(const Parameters &prm)
       }
       std::cout << "table: " << table.path() << "\n";
     }
+  }
+  catch (const ResourceLimitError &e)
+  {
+    // not started: the finished levels stay, the reason is the message
+    write_summary(prm, levels, "stopped", timer.wall_time(), "", e.what());
+    throw;
   }
   catch (const std::exception &e)
   {

@@ -1,0 +1,172 @@
+#include "study/memory_estimate.h"
+
+#include "config/errors.h"
+#include "io/table.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace anisodwr
+{
+namespace
+{
+constexpr double MB = 1024. * 1024.;
+/// Calibrated (doc/results.md, "Memory estimate"): bytes per spatial DoF of a space
+/// besides its sparsity pattern (triangulation share, DoF handler, constraints,
+/// estimator and march scratch).
+constexpr double bytes_per_dof = 200.;
+/// Resident memory the process gains on its first solves beyond what it had before
+/// (library code paged in, solver and quadrature initialization), MB.
+constexpr double startup_mb = 44.;
+/// UMFPACK numeric factors (and its work space) per nonzero of the slab matrix and per
+/// log2 of its size: the fill of a 2D problem grows like n log n.
+constexpr double lu_bytes_per_nnz_log = 5.;
+/// Iterative path: ILU factors and the Tpetra copy of the slab matrix, per nonzero.
+constexpr double precondition_bytes_per_nnz = 36.;
+
+struct Phase
+{
+  double solutions = 0, matrices = 0, solver = 0;
+  double total() const { return solutions + matrices + solver; }
+};
+
+/// Spatial matrices (M, A and their condensed forms), the slab pattern and matrix, and
+/// the solver of one slab operator.
+void add_operator(const SlabSystemSize &s, const MemoryModel &m, Phase &p)
+{
+  const double t = m.r + 1, nnz_k = t * t * s.nnz_space, n_k = t * s.n_space;
+  const double sets = m.time_dependent ? m.r + 3 : 1;
+  p.matrices += sets * 4 * 8 * s.nnz_space + 12 * nnz_k + 8 * n_k;
+  if (s.iterative)
+    p.solver += 8. * m.krylov_vectors * n_k + precondition_bytes_per_nnz * nnz_k;
+  else
+    // deal.II's copy (long indices, values) + the factors
+    p.solver += 16 * nnz_k + 8 * n_k +
+                lu_bytes_per_nnz_log * nnz_k * std::log2(std::max(n_k, 2.));
+}
+} // namespace
+
+MemoryEstimate estimate_memory(const MemoryModel &m)
+{
+  const double t = m.r + 1;
+  auto space = [](const SlabSystemSize &s)
+  { return bytes_per_dof * s.n_space + 4 * s.nnz_space; };
+  auto solutions = [&](const SlabSystemSize &s, double slabs)
+  { return 8 * t * s.n_space * slabs; };
+
+  Phase primal;
+  primal.matrices = space(m.primal) + space(m.adjoint);
+  primal.solutions = solutions(m.primal, m.n_slabs + m.extra_primal_slabs);
+  add_operator(m.primal, m, primal);
+  Phase peak = primal;
+  if (m.adjoint.n_space > 0)
+  {
+    Phase adjoint;
+    adjoint.matrices = space(m.primal) + space(m.adjoint);
+    adjoint.solutions = solutions(m.primal, m.n_slabs) +
+                        m.adjoints_stored * solutions(m.adjoint, m.n_slabs);
+    add_operator(m.adjoint, m, adjoint);
+    if (adjoint.total() > peak.total())
+      peak = adjoint;
+  }
+  MemoryEstimate e;
+  e.solutions_mb = peak.solutions / MB;
+  e.matrices_mb = peak.matrices / MB;
+  e.solver_mb = peak.solver / MB;
+  e.total_mb = m.base_mb + startup_mb + peak.total() / MB;
+  return e;
+}
+
+double resident_memory_mb()
+{
+  std::FILE *f = std::fopen("/proc/self/status", "r");
+  if (!f)
+    return peak_memory_mb();
+  char line[256];
+  double kb = -1;
+  while (std::fgets(line, sizeof line, f))
+    if (std::strncmp(line, "VmRSS:", 6) == 0)
+    {
+      kb = std::atof(line + 6);
+      break;
+    }
+  std::fclose(f);
+  return kb >= 0 ? kb / 1024. : peak_memory_mb();
+}
+
+double physical_memory_mb()
+{
+  return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)) / MB;
+}
+
+MemoryLimit memory_limit(const Parameters &prm)
+{
+  if (prm.max_memory_mb > 0)
+    return {prm.max_memory_mb,
+            "adaptivity.max_memory_mb = " + json_number(prm.max_memory_mb, 6) + " MB"};
+  const double phys = physical_memory_mb();
+  return {phys, "the physical memory of " + json_number(std::round(phys), 8) +
+                    " MB (adaptivity.max_memory_mb = 0)"};
+}
+
+SlabSystemSize slab_system(const Space<2> &space, const SlabSolverOptions &options,
+                           unsigned int r)
+{
+  SlabSystemSize s;
+  s.n_space = space.n_dofs();
+  s.nnz_space = space.sparsity().n_nonzero_elements();
+  s.iterative = solves_iteratively(options, s.n_space, r + 1, space.degree(),
+                                   options.reuse_factorization &&
+                                       !space.scene.coefficients_depend_on_time());
+  return s;
+}
+
+MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
+                         const Space<2> *adjoint, unsigned int n_slabs, double base_mb)
+{
+  const SlabSolverOptions options = slab_solver_options(prm);
+  MemoryModel m;
+  m.primal = slab_system(primal, options, prm.r);
+  if (adjoint)
+    m.adjoint = slab_system(*adjoint, options, prm.r);
+  m.r = prm.r;
+  m.n_slabs = n_slabs;
+  m.time_dependent = primal.scene.coefficients_depend_on_time();
+  m.krylov_vectors = prm.restart + 2;
+  if (adjoint)
+  {
+    m.adjoints_stored = prm.per_goal_estimates ? 2 : 1;
+    m.extra_primal_slabs = prm.measure_time_error ? 4 * n_slabs : 0;
+    // time_indicator = higher_order keeps the dG(r+1) primal: (r+2)/(r+1) primal slabs each
+    if (prm.time_indicator == "higher_order")
+      m.extra_primal_slabs += (n_slabs * (prm.r + 2) + prm.r) / (prm.r + 1);
+  }
+  m.base_mb = base_mb;
+  return m;
+}
+
+void check_memory(const std::string &what, double estimate_mb, const MemoryLimit &limit,
+                  const MemoryModel &model, const std::string &note)
+{
+  if (!(estimate_mb > limit.mb))
+    return;
+  auto solver = [](const SlabSystemSize &s)
+  { return std::string(s.iterative ? "Krylov" : "UMFPACK"); };
+  std::string sizes = "N_space " + std::to_string(std::size_t(model.primal.n_space));
+  if (model.adjoint.n_space > 0)
+    sizes += ", adjoint " + std::to_string(std::size_t(model.adjoint.n_space)) + " DoFs";
+  sizes += ", " + std::to_string(model.n_slabs) + " slabs of dG(" +
+           std::to_string(model.r) + "), " + solver(model.primal) +
+           (model.adjoint.n_space > 0 && model.adjoint.iterative != model.primal.iterative
+                ? "/" + solver(model.adjoint)
+                : "");
+  throw ResourceLimitError(what + ": memory estimate " +
+                           json_number(std::round(estimate_mb), 10) + " MB" + note +
+                           " exceeds " + limit.name + "; " + sizes +
+                           "; not started");
+}
+} // namespace anisodwr

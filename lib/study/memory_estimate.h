@@ -1,0 +1,80 @@
+#pragma once
+// Memory estimate of a single run, a convergence level or a DWR loop, made before it
+// starts from the sizes of its systems (no allocation). The byte counts per stored
+// value are exact (8-byte values, 4-byte column indices, deal.II's copy of the slab
+// matrix for UMFPACK); the UMFPACK fill and the per-DoF overhead (mesh, DoF handler,
+// constraints, estimator scratch) are calibrated against measured peaks
+// (doc/results.md, "Memory estimate").
+#include "config/parameters.h"
+#include "slab/slab_operator.h"
+#include "space/space.h"
+
+#include <string>
+
+namespace anisodwr
+{
+/// The slab system of one spatial space.
+struct SlabSystemSize
+{
+  double n_space = 0;     ///< spatial DoFs (0: no such system)
+  double nnz_space = 0;   ///< nonzeros of the spatial sparsity pattern
+  bool iterative = false; ///< Krylov solver (else UMFPACK)
+};
+
+struct MemoryModel
+{
+  SlabSystemSize primal;
+  SlabSystemSize adjoint;   ///< n_space = 0 for a primal-only run
+  unsigned int r = 0;       ///< dG(r): r+1 temporal DoFs per slab
+  unsigned int n_slabs = 1; ///< N: slab solutions stored for all of them
+  /// Coefficients depend on t: r+3 sets of spatial matrices per operator, else one.
+  bool time_dependent = false;
+  unsigned int krylov_vectors = 32; ///< iterative: restart + 2 vectors of the slab size
+  unsigned int adjoints_stored = 1; ///< 2 with adaptivity.per_goal_estimates
+  /// adaptivity.measure_time_error: the primal on 4 N slabs beside the N-slab solution.
+  unsigned int extra_primal_slabs = 0;
+  double base_mb = 0; ///< resident memory of the process before the run's data
+};
+
+struct MemoryEstimate
+{
+  /// base_mb + startup growth + the larger of the primal and the adjoint phase
+  double total_mb = 0;
+  double solutions_mb = 0; ///< stored slab solutions in the peak phase
+  double matrices_mb = 0;  ///< spatial and slab matrices, spaces, in the peak phase
+  double solver_mb = 0;    ///< UMFPACK factors or Krylov vectors and preconditioner
+};
+
+/// Peak memory of the run: the primal phase (spaces, the N primal slab solutions, the
+/// primal slab operator) or the adjoint phase (spaces, primal and adjoint solutions,
+/// the adjoint slab operator), whichever is larger, plus base_mb.
+MemoryEstimate estimate_memory(const MemoryModel &m);
+
+/// Resident memory of this process now (VmRSS), MB.
+double resident_memory_mb();
+/// Physical memory of the machine, MB.
+double physical_memory_mb();
+
+/// The memory limit of a run: adaptivity.max_memory_mb, or the physical memory when
+/// that key is 0. `name` describes it for messages.
+struct MemoryLimit
+{
+  double mb = 0;
+  std::string name;
+};
+MemoryLimit memory_limit(const Parameters &prm);
+
+/// The slab system of `space` (set up) with dG(r) and the solver choice of `options`.
+SlabSystemSize slab_system(const Space<2> &space, const SlabSolverOptions &options,
+                           unsigned int r);
+
+/// The model of one run (study levels: primal only; DWR loops: with the adjoint space)
+/// for the parameters `prm`.
+MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
+                         const Space<2> *adjoint, unsigned int n_slabs, double base_mb);
+
+/// Throws ResourceLimitError with a one-line message naming `what` (e.g. "loop 3"),
+/// the estimate, the limit and the sizes if estimate_mb > limit.mb.
+void check_memory(const std::string &what, double estimate_mb, const MemoryLimit &limit,
+                  const MemoryModel &model, const std::string &note = "");
+} // namespace anisodwr

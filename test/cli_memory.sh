@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# The memory estimate before each DWR loop and before a single run: a loop whose
+# estimate exceeds adaptivity.max_memory_mb (or the physical memory) is not started,
+# exit code 2 with a one-line message (estimate, limit, loop), summary.json status
+# "stopped", the finished loops' rows on disk; loops.csv records memory_estimate_mb.
+source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
+cfg=$src/config/moving_hump.json
+expect_timeout=60
+# 1089 DoFs on loop 1, about 1.6 times as many on loop 2: estimates well apart
+base=(--set discretization.initial_refinements=5 --set output.vtu_loops=0)
+
+check() { # check NAME PYTHON-ASSERTIONS (d = summary.json, rows = loops.csv rows)
+  local name=$1 dir=$2 code=$3
+  if python3 - "$dir" <<PY; then echo "ok: $name"; else echo "FAIL: $name"; fail=1; fi
+import csv, json, sys
+d = json.load(open(sys.argv[1] + "/summary.json"))
+f = open(sys.argv[1] + "/loops.csv") if "$name".startswith("dwr") else None
+header = f.readline().strip().split(",") if f else []
+rows = list(csv.DictReader(f, fieldnames=header)) if f else []
+$code
+PY
+}
+
+# no limit: estimates of loops 1 and 2 recorded, the last column, below the physical memory
+d=$tmp/free
+expect 0 "results:" -- run "$cfg" --output "$d" "${base[@]}" --set adaptivity.loops=2
+check "dwr: memory_estimate_mb per loop" "$d" '
+assert header[-1] == "memory_estimate_mb", header
+e = [float(r["memory_estimate_mb"]) for r in rows]
+assert len(e) == 2 and 0 < e[0] < e[1], e
+assert all(float(r["mem_peak"]) > 0 for r in rows)
+assert d["status"] == "ok"'
+
+# a limit between the two estimates: loop 1 runs, loop 2 is not started
+limit=$(python3 -c "import csv; e=[float(r['memory_estimate_mb']) for r in csv.DictReader(open('$d/loops.csv'))]; assert e[1]-e[0] > 4, e; print(round((e[0]+e[1])/2))")
+d=$tmp/between
+expect 2 "^anisodwr: stopped: loop 2: memory estimate [0-9]* MB.* exceeds adaptivity.max_memory_mb = $limit MB; N_space [0-9]*, adjoint [0-9]* DoFs, 10 slabs of dG(1), UMFPACK; not started$" -- \
+  run "$cfg" --output "$d" "${base[@]}" --set adaptivity.loops=3 --set adaptivity.max_memory_mb=$limit
+check "dwr: stopped before loop 2, loop 1 on disk" "$d" '
+assert d["status"] == "stopped", d["status"]
+assert d["stop_reason"].startswith("loop 2: memory estimate"), d["stop_reason"]
+assert [l["loop"] for l in d["loops"]] == [1], d["loops"]
+assert [r["loop"] for r in rows] == ["1"], rows
+assert float(rows[0]["memory_estimate_mb"]) < '"$limit"
+out=$(timeout 60 "$bin" run "$cfg" --output "$tmp/lines" "${base[@]}" --set adaptivity.max_memory_mb=$limit 2>&1 >/dev/null)
+if [ "$(wc -l <<<"$out")" != 1 ]; then echo "FAIL: stderr is not one line: $out"; fail=1; fi
+
+# a tiny limit: nothing started, summary.json and the loops.csv header written
+d=$tmp/tiny
+expect 2 "stopped: loop 1: memory estimate [0-9]* MB exceeds adaptivity.max_memory_mb = 1 MB" -- \
+  run "$cfg" --output "$d" --set adaptivity.max_memory_mb=1
+check "dwr: stopped before loop 1" "$d" '
+assert d["status"] == "stopped" and d["loops"] == [] and rows == [], (d["status"], rows)'
+
+# single run and convergence study: before the run / the level
+d=$tmp/single
+expect 2 "stopped: run: memory estimate [0-9]* MB exceeds adaptivity.max_memory_mb = 1 MB; N_space 1089, 10 slabs of dG(1), UMFPACK; not started" -- \
+  run "$cfg" --output "$d" --set study.mode=single --set discretization.initial_refinements=5 \
+  --set adaptivity.max_memory_mb=1
+check "single: stopped" "$d" 'assert d["status"] == "stopped" and d["levels"] == []'
+# the physical memory when the key is 0: 1e6 slabs of dG(10) on 16641 DoFs would store
+# 1.4 TB of slab solutions
+d=$tmp/physical
+expect 2 "stopped: run: memory estimate [0-9]* MB exceeds the physical memory of [0-9]* MB (adaptivity.max_memory_mb = 0); N_space 16641, 1000000 slabs of dG(10)" -- \
+  run "$cfg" --output "$d" --set study.mode=single --set discretization.initial_refinements=7 \
+  --set discretization.r=10 --set discretization.n_slabs=1000000
+check "single: physical memory" "$d" 'assert d["status"] == "stopped" and d["levels"] == []'
+
+# convergence study in space: levels 0 and 1 run, level 2 (four times the DoFs) is not
+# started; the limit lies between the estimates of levels 1 and 2, extrapolated from a
+# run of levels 0 and 1 (the data part grows more than fourfold per level)
+conv=(--set study.mode=convergence --set study.refine=space --set discretization.initial_refinements=6
+  --set discretization.n_slabs=2)
+d=$tmp/conv2
+expect 0 "results:" -- run "$cfg" --output "$d" "${conv[@]}" --set study.levels=2
+limit=$(python3 -c "import json; e=[l['memory_estimate_mb'] for l in json.load(open('$d/summary.json'))['levels']]; assert e[1]-e[0] > 4, e; print(round(e[1] + 2*(e[1]-e[0])))")
+d=$tmp/conv3
+expect 2 "stopped: level 2: memory estimate [0-9]* MB exceeds adaptivity.max_memory_mb = $limit MB; N_space 66049," -- \
+  run "$cfg" --output "$d" "${conv[@]}" --set study.levels=3 --set adaptivity.max_memory_mb=$limit
+check "convergence: levels 0, 1 on disk" "$d" '
+assert d["status"] == "stopped" and d["stop_reason"].startswith("level 2: memory estimate")
+assert [l["level"] for l in d["levels"]] == [0, 1], d["levels"]
+assert all(l["memory_estimate_mb"] > 0 for l in d["levels"])'
+exit $fail
