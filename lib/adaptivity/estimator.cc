@@ -765,8 +765,8 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       ez.plus.reinit(nw); // E z(t_{n-1}) = z(t_{n-1}^+)
       eu.plus = u_prev;   // E u(t_{n-1}) - u(t_{n-1}^+)
       eu.plus -= u.plus;
-      // J'(E u - u): the part over I (E u - u vanishes at t_n, so the end part is 0)
-      double jv = apply(Jf, eu, false);
+      // J_T(E u - u) at T: 0 for the Radau reconstruction (E u - u vanishes at t_n)
+      double end_part = 0;
       if (hi)
       {
         // E u := u_r+1: values and derivatives at the Gauss points, the jump of
@@ -802,7 +802,6 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
           e_prev -= u_prev; // u(t_{n-1}^-)
           eu.plus -= e_prev;
         }
-        jv = apply(Jf, eu, false);
         if (last && jT.size())
         {
           vT = 0.;
@@ -810,9 +809,10 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
             vT.add(hi->basis.right_trace()[k], hk[k]);
           for (unsigned int k = 0; k < m1; ++k)
             vT.add(-basis.right_trace()[k], uk[k]);
-          jv += jT * vT;
+          end_part = jT * vT;
         }
       }
+      const double jv = apply(Jf, eu, false) + end_part; // J'(E u - u) over I and at T
       const double half_rho = 0.5 * apply(rho, ez, false),
                    half_rhostar = 0.5 * (jv - apply(A_z, eu, true));
       const double eta_tau = time_indicator == TimeIndicator::average

@@ -14,13 +14,13 @@ using namespace dealii;
 namespace
 {
 SolverTotals totals;
+} // namespace
 
 double physical_memory_mb()
 {
   const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
   return pages > 0 && size > 0 ? double(pages) * double(size) / (1024. * 1024.) : 8192.;
 }
-} // namespace
 
 const SolverTotals &solver_totals() { return totals; }
 

@@ -63,6 +63,9 @@ const SolverTotals &solver_totals();
 /// `"solver_fallbacks": n, "krylov": {...}` (JSON members, no braces).
 std::string solver_totals_json();
 
+/// Physical memory of the machine, MB (8192 if the system does not say).
+double physical_memory_mb();
+
 /// Predicted UMFPACK factor size (MB) of an n x n slab matrix of FE_Q(degree): measured
 /// 150 n log2(n) bytes for Q1 and 200 for Q2 and higher (doc/results.md, "Slab solvers").
 double predicted_lu_mb(double n, unsigned int degree);

@@ -138,13 +138,6 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
   }
 }
 
-template <int dim> void Space<dim>::assemble_load(double t, double tau, Vector<double> &F) const
-{
-  std::vector<Vector<double>> loads(1);
-  assemble_loads({t}, tau, loads);
-  F.swap(loads[0]);
-}
-
 template <int dim>
 void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
                                 std::vector<Vector<double>> &F) const
@@ -233,18 +226,6 @@ template <int dim> void Space<dim>::assemble_initial(double tau, Vector<double> 
         U0(idx[i]) += u0 * (fv.shape_value(i, q) + dK * (b * fv.shape_grad(i, q)));
     }
   }
-}
-
-template <int dim> double Space<dim>::l2_error(const Vector<double> &uh, double t) const
-{
-  const ExactSolution<dim> &exact = *scene.exact();
-  const ScalarFunctionFromFunctionObject<dim> u([&](const Point<dim> &x)
-                                                { return exact.value(x, t); });
-  Vector<float> cellwise(dofs.get_triangulation().n_active_cells());
-  VectorTools::integrate_difference(map, dofs, uh, u, cellwise,
-                                    QGauss<dim>(fe.degree + 3), VectorTools::L2_norm);
-  return VectorTools::compute_global_error(dofs.get_triangulation(), cellwise,
-                                           VectorTools::L2_norm);
 }
 
 template class Space<2>;

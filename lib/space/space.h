@@ -52,17 +52,13 @@ public:
 
   /// M(t), A(t) and their condensed forms on a slab of length tau (delta_K's bound).
   void assemble_matrices(double t, double tau, SpatialMatrices &m) const;
-  /// F_i(t) = (f(t), phi_i + delta_K b(t).grad phi_i) + (u_N(t), phi_i)_{Gamma_N}.
-  void assemble_load(double t, double tau, dealii::Vector<double> &F) const;
-  /// The loads F(t_k) for several times of one slab (one pass over the cells).
+  /// The loads F_i(t_k) = (f(t_k), phi_i + delta_K b(t_k).grad phi_i) +
+  /// (u_N(t_k), phi_i)_{Gamma_N} for several times of one slab (one pass over the cells).
   void assemble_loads(const std::vector<double> &times, double tau,
                       std::vector<dealii::Vector<double>> &F) const;
   /// (u_0, phi_i + delta_K b(0).grad phi_i): the SUPG initial term (tau: the first
   /// slab's length).
   void assemble_initial(double tau, dealii::Vector<double> &U0) const;
-
-  /// L2 norm of u(t) - u_h over the domain (u_h a full, constraint-distributed vector).
-  double l2_error(const dealii::Vector<double> &uh, double t) const;
 
   /// SUPG parameter delta_K of a cell on a slab of length tau.
   double delta(const typename dealii::Triangulation<dim>::cell_iterator &cell,

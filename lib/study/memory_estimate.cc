@@ -3,8 +3,6 @@
 #include "config/errors.h"
 #include "io/table.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -96,11 +94,6 @@ double resident_memory_mb()
     }
   std::fclose(f);
   return kb >= 0 ? kb / 1024. : peak_memory_mb();
-}
-
-double physical_memory_mb()
-{
-  return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)) / MB;
 }
 
 MemoryLimit memory_limit(const Parameters &prm)

@@ -52,8 +52,7 @@ MemoryEstimate estimate_memory(const MemoryModel &m);
 
 /// Resident memory of this process now (VmRSS), MB.
 double resident_memory_mb();
-/// Physical memory of the machine, MB.
-double physical_memory_mb();
+/// (physical_memory_mb: slab/slab_operator.h)
 
 /// The memory limit of a run: adaptivity.max_memory_mb, or the physical memory when
 /// that key is 0. `name` describes it for messages.
