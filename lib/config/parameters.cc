@@ -239,6 +239,12 @@ std::vector<Entry> make_entries()
        "solves."},
       {"adaptivity", "adjoint_degree", "0", Kind::integer, integer(0, 8),
        "Polynomial degree q of the adjoint; 0 means q = 2p."},
+      {"adaptivity", "adjoint_stabilization", "transposed", Kind::text,
+       choice("transposed|none"),
+       "transposed: the adjoint is the transpose of the SUPG-stabilized primal operator "
+       "in degree q (SPEC); none: the adjoint is the Galerkin (delta = 0) discretization "
+       "of the continuous adjoint, consistent with it; the estimator's S terms still use "
+       "the primal's delta_K."},
       {"output", "directory", "results/moving_hump", Kind::text, text,
        "Output directory (created if missing); --output overrides it."},
       {"output", "vtu_every", "1", Kind::integer, integer(0, 1000000),
@@ -484,6 +490,7 @@ public:
     p.max_memory_mb = real("adaptivity.max_memory_mb");
     p.max_wall_time = real("adaptivity.max_wall_time");
     p.adjoint_degree = integer("adaptivity.adjoint_degree");
+    p.adjoint_stabilization = get("adaptivity.adjoint_stabilization");
     p.measure_time_error = boolean("adaptivity.measure_time_error");
     p.time_indicator = get("adaptivity.time_indicator");
     p.per_goal_estimates = boolean("adaptivity.per_goal_estimates");
@@ -659,6 +666,7 @@ std::string Parameters::to_json(unsigned int indent) const
       {"adaptivity.max_memory_mb", num(max_memory_mb)},
       {"adaptivity.max_wall_time", num(max_wall_time)},
       {"adaptivity.adjoint_degree", std::to_string(adjoint_degree)},
+      {"adaptivity.adjoint_stabilization", adjoint_stabilization},
       {"adaptivity.measure_time_error", measure_time_error ? "true" : "false"},
       {"adaptivity.time_indicator", time_indicator},
       {"adaptivity.per_goal_estimates", per_goal_estimates ? "true" : "false"},

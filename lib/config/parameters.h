@@ -70,6 +70,7 @@ struct Parameters
   double max_memory_mb = 0.;
   double max_wall_time = 0.; ///< s; 0: no budget
   unsigned int adjoint_degree = 0;
+  std::string adjoint_stabilization = "transposed";
   bool measure_time_error = false;
   std::string time_indicator = "average";
   bool per_goal_estimates = false;

@@ -494,7 +494,9 @@ void run_dwr(const Parameters &prm)
         Space<2> primal(*scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline",
                          prm.supg_tau_factor);
         primal.setup();
-        Space<2> adjoint(*scene, tria, q, prm.delta0, prm.supg_length == "streamline",
+        Space<2> adjoint(*scene, tria, q,
+                         prm.adjoint_stabilization == "none" ? 0. : prm.delta0,
+                         prm.supg_length == "streamline",
                          prm.supg_tau_factor);
         adjoint.setup();
         row.n_space = primal.n_dofs();
