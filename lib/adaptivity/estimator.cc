@@ -547,7 +547,8 @@ Indicators<dim>
 estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
          const TemporalBasis &basis, const std::vector<Vector<double>> &U,
          const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
-         const TimeIndicator time_indicator, const HigherOrderPrimal *hi)
+         const TimeIndicator time_indicator, const HigherOrderPrimal *hi,
+         const SpaceIndicator space_indicator)
 {
   if ((time_indicator == TimeIndicator::higher_order) != (hi != nullptr))
     throw std::invalid_argument(
@@ -693,8 +694,12 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
         Riz = z;
         transform(ops.restriction(i), Riz);
         difference(z, Riz, dz);
-        double eta = 0.5 * apply(rho, dz, false);
-        if (lift[i].exists)
+        const double half_rho = 0.5 * apply(rho, dz, false);
+        ind.eta_h_rho += half_rho;
+        double eta = half_rho;
+        if (space_indicator == SpaceIndicator::primal_residual)
+          eta += half_rho;
+        else if (lift[i].exists)
         {
           for (unsigned int k = 0; k < m1; ++k)
           {
@@ -719,7 +724,10 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
               vT.add(basis.right_trace()[k], vk[k]);
             jv += jT * vT;
           }
-          eta += 0.5 * (jv - apply(A_rh, v, true)) + 0.5 * apply(S_rh, v, true);
+          const double half_rhostar =
+              0.5 * (jv - apply(A_rh, v, true)) + 0.5 * apply(S_rh, v, true);
+          ind.eta_h_rhostar += half_rhostar;
+          eta += half_rhostar;
         }
         ind.eta_h_cell[c][i] += eta;
         ind.eta_h[i] += eta;
@@ -828,6 +836,9 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
     // is nearly the same for every i: R_i z does not measure direction i). Its cell
     // total S(u)(R_h z) is split over the directions in proportion to the size of the
     // directional primal error ||I_2h,i u - u||^2 (summed over the slabs).
+    ind.eta_h_supg += supg_part;
+    for (unsigned int i = 0; i < dim; ++i)
+      ind.no_lift += lift[i].exists ? 0 : 1;
     double total = 0;
     for (double l : lift_size)
       total += l;
@@ -959,6 +970,6 @@ template Indicators<2> estimate<2>(const Space<2> &, const Space<2> &, const Tim
                                    const std::vector<Vector<double>> &,
                                    const std::vector<Vector<double>> &,
                                    const std::vector<GoalSpec> &, TimeIndicator,
-                                   const HigherOrderPrimal *);
+                                   const HigherOrderPrimal *, SpaceIndicator);
 template struct LocalizedForms<2>;
 } // namespace anisodwr

@@ -48,6 +48,12 @@ template <int dim> struct Indicators
   /// alone is a first-order approximation of the temporal error; they differ where
   /// the adjoint or the primal is poorly resolved in time)
   double eta_tau_rho = 0, eta_tau_rhostar = 0;
+  /// the parts of eta_h (summed over directions): 1/2 rho(u)(z - R_i z), the adjoint
+  /// half 1/2 rho*(u, R_h z)(I_2h,i u - u) + 1/2 S'(..) (cells with a lift only) and the
+  /// SUPG consistency term S(u)(R_h z)
+  double eta_h_rho = 0, eta_h_rhostar = 0, eta_h_supg = 0;
+  /// (cell, direction) pairs without a directional lift (no adjoint half there)
+  unsigned int no_lift = 0;
   double eta_h_total() const
   {
     double s = 0;
@@ -76,6 +82,17 @@ enum class TimeIndicator
   higher_order
 };
 
+/// Which form of the spatial error representation eta_h,i uses.
+enum class SpaceIndicator
+{
+  /// 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - u) + S terms (SPEC §5); on a
+  /// (cell, direction) without a lift only the primal half
+  average,
+  /// rho(u)(z - R_i z) + S(u)(R_h z) share: the primal-residual form alone, which needs
+  /// no lift of u (exact up to z ~ z_tau h and the directional split)
+  primal_residual
+};
+
 /// The primal solved once more in dG(r+1) (basis.degree() = r+1) on the same slabs and
 /// spatial space (TimeIndicator::higher_order).
 struct HigherOrderPrimal
@@ -92,7 +109,8 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
          const TemporalBasis &basis, const std::vector<dealii::Vector<double>> &U,
          const std::vector<dealii::Vector<double>> &Z, const std::vector<GoalSpec> &goals,
          TimeIndicator time_indicator = TimeIndicator::average,
-         const HigherOrderPrimal *higher_order = nullptr);
+         const HigherOrderPrimal *higher_order = nullptr,
+         SpaceIndicator space_indicator = SpaceIndicator::average);
 
 /// The localized forms summed over all cells, one value per slab, for given global
 /// functions (for the localization tests). u in `primal`'s space; the weights w, y, v

@@ -95,6 +95,11 @@ std::vector<Entry> make_entries()
        "serves all slabs (coefficients constant in time, equal slabs) and its predicted "
        "factors fit in solver.auto_memory_mb; otherwise iterative iff N_space (r+1)^2 >= "
        "solver.auto_threshold."},
+      {"solver", "dof_numbering", "native", Kind::text, choice("native|downstream"),
+       "Spatial DoF order: native (deal.II's cell-wise order) or downstream (sorted along "
+       "the convection b at the domain's centre; ILU and Gauss-Seidel then sweep with the "
+       "flow, which keeps them effective on convection-dominated, anisotropic meshes). "
+       "Direct solves are unaffected up to round-off."},
       {"solver", "reuse_factorization", "true", Kind::boolean, boolean,
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
        "unchanged (same tau, coefficients constant in time)."},
@@ -239,6 +244,12 @@ std::vector<Entry> make_entries()
        "solves."},
       {"adaptivity", "adjoint_degree", "0", Kind::integer, integer(0, 8),
        "Polynomial degree q of the adjoint; 0 means q = 2p."},
+      {"adaptivity", "space_indicator", "average", Kind::text,
+       choice("average|primal_residual"),
+       "Form of eta_h,i. average: 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - "
+       "u) + SUPG terms (SPEC; where a cell has no directional lift only the primal "
+       "half); primal_residual: rho(u)(z - R_i z) + S(u)(R_h z), the primal residual "
+       "alone, which needs no lift of u."},
       {"adaptivity", "adjoint_stabilization", "transposed", Kind::text,
        choice("transposed|none"),
        "transposed: the adjoint is the transpose of the SUPG-stabilized primal operator "
@@ -491,6 +502,8 @@ public:
     p.max_wall_time = real("adaptivity.max_wall_time");
     p.adjoint_degree = integer("adaptivity.adjoint_degree");
     p.adjoint_stabilization = get("adaptivity.adjoint_stabilization");
+    p.space_indicator = get("adaptivity.space_indicator");
+    p.dof_numbering = get("solver.dof_numbering");
     p.measure_time_error = boolean("adaptivity.measure_time_error");
     p.time_indicator = get("adaptivity.time_indicator");
     p.per_goal_estimates = boolean("adaptivity.per_goal_estimates");
@@ -646,6 +659,7 @@ std::string Parameters::to_json(unsigned int indent) const
       {"solver.stagnation_window", std::to_string(stagnation_window)},
       {"solver.stagnation_factor", num(stagnation_factor)},
       {"solver.fallback", fallback},
+      {"solver.dof_numbering", dof_numbering},
       {"study.mode", mode},
       {"study.refine", refine},
       {"study.levels", std::to_string(levels)},
@@ -667,6 +681,7 @@ std::string Parameters::to_json(unsigned int indent) const
       {"adaptivity.max_wall_time", num(max_wall_time)},
       {"adaptivity.adjoint_degree", std::to_string(adjoint_degree)},
       {"adaptivity.adjoint_stabilization", adjoint_stabilization},
+      {"adaptivity.space_indicator", space_indicator},
       {"adaptivity.measure_time_error", measure_time_error ? "true" : "false"},
       {"adaptivity.time_indicator", time_indicator},
       {"adaptivity.per_goal_estimates", per_goal_estimates ? "true" : "false"},

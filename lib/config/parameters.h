@@ -71,6 +71,8 @@ struct Parameters
   double max_wall_time = 0.; ///< s; 0: no budget
   unsigned int adjoint_degree = 0;
   std::string adjoint_stabilization = "transposed";
+  std::string space_indicator = "average";
+  std::string dof_numbering = "native";
   bool measure_time_error = false;
   std::string time_indicator = "average";
   bool per_goal_estimates = false;

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_renumbering.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -26,6 +27,13 @@ Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria,
 template <int dim> void Space<dim>::setup()
 {
   dofs.distribute_dofs(fe);
+  if (downstream)
+  {
+    const auto box = scene.bounding_box();
+    const Tensor<1, dim> b = scene.convection(0.5 * (box[0] + box[1]), 0.);
+    if (b.norm() > 0)
+      DoFRenumbering::downstream(dofs, b, true);
+  }
   homogeneous.clear();
   DoFTools::make_hanging_node_constraints(dofs, homogeneous);
   for (const auto id : scene.dirichlet_ids)

@@ -85,6 +85,7 @@ struct LoopRow
   std::vector<double> weights;
   double t_primal = 0, t_adjoint = 0, t_estimate = 0, t_refine = 0, mem = 0;
   double eta_tau_rho = 0, eta_tau_rhostar = 0;
+  double eta_h_rho = 0, eta_h_rhostar = 0, eta_h_supg = 0, no_lift = 0;
   /// adaptivity.measure_time_error: J_w(u_h) - J_w(u_tau h) on this spatial mesh,
   /// extrapolated from the time mesh bisected once and twice (NaN when not measured)
   double err_tau = nan, err_tau_order = nan;
@@ -132,7 +133,8 @@ struct LoopRow
     v.insert(v.end(),
              {eta_tau_rho, eta_tau_rhostar, err_tau, err_tau_order,
               double(marking.marked), double(marking.cut_x), double(marking.cut_y),
-              double(marking.cut_both), double(marking.closure), mem_estimate});
+              double(marking.cut_both), double(marking.closure), mem_estimate,
+              eta_h_rho, eta_h_rhostar, eta_h_supg, no_lift});
     return v;
   }
 };
@@ -147,7 +149,9 @@ const std::vector<std::string> columns{
 /// I_eff (adaptivity.per_goal_estimates; else empty), the two halves of eta_tau, the
 /// measured temporal error (adaptivity.measure_time_error; else empty), and
 /// the cells of the refinement after the loop: marked, cut in x only, in y only, in
-/// both, and flagged or extended by the closure; last the loop's memory estimate.
+/// both, and flagged or extended by the closure; the loop's memory estimate; last the
+/// parts of eta_h (1/2 rho(u)(z - R_i z), the adjoint half, S(u)(R_h z), summed over
+/// directions) and the number of (cell, direction) pairs without a lift.
 std::vector<std::string> all_columns(const std::vector<GoalSpec> &goals)
 {
   auto c = columns;
@@ -156,7 +160,8 @@ std::vector<std::string> all_columns(const std::vector<GoalSpec> &goals)
       c.push_back(prefix + g.name);
   c.insert(c.end(), {"eta_tau_rho", "eta_tau_rhostar", "err_tau", "err_tau_order",
                      "marked", "marked_x", "marked_y", "marked_xy", "closure",
-                     "memory_estimate_mb"});
+                     "memory_estimate_mb", "eta_h_rho", "eta_h_rhostar", "eta_h_supg",
+                     "no_lift"});
   return c;
 }
 
@@ -304,6 +309,12 @@ double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &m
                   const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
   return evaluate_goal(assemble_goal_vectors(space, {unweighted(goal)}), mesh, basis, U);
+}
+
+SpaceIndicator space_indicator(const Parameters &prm)
+{
+  return prm.space_indicator == "primal_residual" ? SpaceIndicator::primal_residual
+                                                  : SpaceIndicator::average;
 }
 
 TimeIndicator time_indicator(const Parameters &prm)
@@ -493,11 +504,13 @@ void run_dwr(const Parameters &prm)
       {
         Space<2> primal(*scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline",
                          prm.supg_tau_factor);
+        primal.set_downstream_numbering(prm.dof_numbering == "downstream");
         primal.setup();
         Space<2> adjoint(*scene, tria, q,
                          prm.adjoint_stabilization == "none" ? 0. : prm.delta0,
                          prm.supg_length == "streamline",
                          prm.supg_tau_factor);
+        adjoint.set_downstream_numbering(prm.dof_numbering == "downstream");
         adjoint.setup();
         row.n_space = primal.n_dofs();
         row.n_t = mesh.n_slabs();
@@ -569,7 +582,8 @@ void run_dwr(const Parameters &prm)
         row.t_adjoint = t.wall_time();
 
         t.restart();
-        ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, time_indicator(prm), hi_ptr);
+        ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, time_indicator(prm), hi_ptr,
+                       space_indicator(prm));
         row.t_estimate = t.wall_time();
         for (double e : ind.eta_tau_slab)
           if (!std::isfinite(e))
@@ -581,7 +595,8 @@ void run_dwr(const Parameters &prm)
             const auto Zg = march_adjoint(adjoint, mesh, basis, opq,
                                           assemble_goal_vectors(adjoint, {g}), opt);
             const auto ig =
-                estimate(primal, adjoint, mesh, basis, U, Zg, {g}, time_indicator(prm), hi_ptr);
+                estimate(primal, adjoint, mesh, basis, U, Zg, {g}, time_indicator(prm), hi_ptr,
+                         space_indicator(prm));
             row.eta_goal.push_back(ig.eta_h_total() + ig.eta_tau);
           }
         row.eta_h = ind.eta_h;
@@ -589,6 +604,10 @@ void run_dwr(const Parameters &prm)
         row.eta_tau = ind.eta_tau;
         row.eta_tau_rho = ind.eta_tau_rho;
         row.eta_tau_rhostar = ind.eta_tau_rhostar;
+        row.eta_h_rho = ind.eta_h_rho;
+        row.eta_h_rhostar = ind.eta_h_rhostar;
+        row.eta_h_supg = ind.eta_h_supg;
+        row.no_lift = ind.no_lift;
         std::vector<double> ar_cell;
         row.ar = max_aspect_ratio(tria, primal.mapping(), &ar_cell);
 

@@ -79,6 +79,7 @@ LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned i
   tria.refine_global(refinements);
   Space<2> space(scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline",
                          prm.supg_tau_factor);
+  space.set_downstream_numbering(prm.dof_numbering == "downstream");
   space.setup();
   const MemoryModel model = memory_model(prm, space, nullptr, n_slabs, base_mb);
   res.memory_estimate_mb = estimate_memory(model).total_mb;
