@@ -13,7 +13,8 @@
 // line (header with --header): setup = factorization or preconditioner (incl. the Tpetra
 // copy of K), solve = per slab, peak = VmHWM of the process. Env BENCH_ILU_FILL sets
 // solver.ilu_fill (default 1). Env BENCH_ANISO = k refines every cell k more times in y
-// only (aspect ratio 2^k, column aspect_ratio).
+// only (aspect ratio 2^k, column aspect_ratio). Env BENCH_NUMBERING = downstream
+// numbers the DoFs along b (solver.dof_numbering; column numbering).
 #include "config/errors.h"
 #include "goal/goal.h"
 #include "io/table.h"
@@ -40,7 +41,7 @@ namespace
 const char *header =
     "system,p,r,eps,refinements,N_space,N_slab,solver,preconditioner,status,"
     "setup_s,solve_s_per_slab,iters_mean,iters_max,peak_mb,base_mb,load1,"
-    "message,aspect_ratio";
+    "message,aspect_ratio,numbering";
 
 double current_rss_mb()
 {
@@ -131,6 +132,9 @@ int main(int argc, char **argv)
     tria.execute_coarsening_and_refinement();
   }
   Space<2> space(*scene, tria, p, 1.0);
+  const char *numbering_env = std::getenv("BENCH_NUMBERING");
+  const std::string numbering = numbering_env ? numbering_env : "native";
+  space.set_downstream_numbering(numbering == "downstream");
   space.setup();
   const TemporalBasis basis(r);
   const double tau = 0.05;
@@ -175,6 +179,7 @@ int main(int argc, char **argv)
             << "," << status << "," << setup << "," << t.solve / solves << ","
             << (t.n_krylov_solves ? double(t.krylov_iterations) / t.n_krylov_solves : 0.)
             << "," << t.max_krylov_iterations << "," << peak_memory_mb() << "," << base
-            << "," << load1() << ",\"" << message << "\"," << (1u << aniso) << std::endl;
+            << "," << load1() << ",\"" << message << "\"," << (1u << aniso) << ","
+            << numbering << std::endl;
   return 0;
 }
