@@ -236,3 +236,46 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
   EXPECT_THROW(estimate(space, space, mesh, basis, U, U, {at_T}, TimeIndicator::higher_order),
                std::invalid_argument);
 }
+
+// The parts of eta_h reported in loops.csv add up to eta_h in both forms: average =
+// 1/2 rho + adjoint half + S, primal_residual = rho + S (no adjoint half); the primal
+// half and the SUPG term do not depend on the form. Moving hump (SUPG on), Q1/Q2 on the
+// anisotropic mesh, dG(1), a point goal at T.
+TEST(SpaceIndicator, PartsSumToEtaHInBothForms)
+{
+  const auto scene = create_scene<2>(Parameters::from_overrides({"scene.name=moving_hump"}));
+  Triangulation<2> tria;
+  make_mesh(tria);
+  tria.refine_global(1);
+  Space<2> primal(*scene, tria, 1, 1.), adjoint(*scene, tria, 2, 1.);
+  primal.setup();
+  adjoint.setup();
+  const TemporalBasis basis(1);
+  const TimeMesh mesh = TimeMesh::uniform(0.5, 3);
+  SlabOperator<2> op(primal, basis, SlabSolverOptions::direct(true));
+  SlabOperator<2> opq(adjoint, basis, SlabSolverOptions::direct(true));
+  const auto U = march_primal(primal, mesh, basis, op, MarchOptions{});
+  const auto goals = scene->default_goals(0.1);
+  const auto Z = march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, goals),
+                               MarchOptions{});
+  const auto avg = estimate(primal, adjoint, mesh, basis, U, Z, goals,
+                            TimeIndicator::average, nullptr, SpaceIndicator::average);
+  const auto pr = estimate(primal, adjoint, mesh, basis, U, Z, goals,
+                           TimeIndicator::average, nullptr, SpaceIndicator::primal_residual);
+  const double scale = std::abs(avg.eta_h_rho) + std::abs(avg.eta_h_rhostar) +
+                       std::abs(avg.eta_h_supg);
+  ASSERT_GT(scale, 0.);
+  EXPECT_GT(std::abs(avg.eta_h_rhostar), 1e-6 * scale); // the forms differ
+  EXPECT_NEAR(avg.eta_h_total(), avg.eta_h_rho + avg.eta_h_rhostar + avg.eta_h_supg,
+              1e-12 * scale);
+  EXPECT_NEAR(pr.eta_h_total(), 2 * pr.eta_h_rho + pr.eta_h_supg, 1e-12 * scale);
+  EXPECT_EQ(pr.eta_h_rhostar, 0.);
+  EXPECT_NEAR(pr.eta_h_rho, avg.eta_h_rho, 1e-12 * scale);
+  EXPECT_NEAR(pr.eta_h_supg, avg.eta_h_supg, 1e-12 * scale);
+  EXPECT_NEAR(pr.eta_tau, avg.eta_tau, 1e-12 * scale);
+  // per cell: the directional indicators of primal_residual sum to its eta_h
+  double cells = 0;
+  for (const auto &c : pr.eta_h_cell)
+    cells += c[0] + c[1];
+  EXPECT_NEAR(cells, pr.eta_h_total(), 1e-12 * scale);
+}
