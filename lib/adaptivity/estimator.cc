@@ -2,6 +2,7 @@
 
 #include "adaptivity/spatial_operators.h"
 #include "adaptivity/temporal_reconstruction.h"
+#include "time/slab_vector.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -241,7 +242,7 @@ public:
     combine(Un, idx, basis.left_trace(), 1., cp);
     if (Uprev)
       for (unsigned int l = 0; l < np; ++l)
-        cm(l) = (*Uprev)(idx[l] * m1 + m1 - 1);
+        cm(l) = (*Uprev)(SlabLayout{m1}.last(idx[l]));
     for (unsigned int q = 0; q < nq; ++q)
     {
       const Point<dim> &x = fv_p.quadrature_point(q);
@@ -396,12 +397,12 @@ private:
   void combine(const Vector<double> &U, const std::vector<types::global_dof_index> &dofs,
                const std::vector<double> &a, double scale, Vector<double> &c) const
   {
-    const unsigned int m1 = basis.n_dofs();
+    const SlabLayout slab{basis.n_dofs()};
     for (unsigned int l = 0; l < dofs.size(); ++l)
     {
       double s = 0;
-      for (unsigned int k = 0; k < m1; ++k)
-        s += a[k] * U(dofs[l] * m1 + k);
+      for (unsigned int k = 0; k < slab.m; ++k)
+        s += a[k] * U(slab.index(dofs[l], k));
       c(l) = scale * s;
     }
   }
@@ -468,10 +469,11 @@ void gather(const Vector<double> &U, const std::vector<types::global_dof_index> 
             unsigned int m1, unsigned int k, const FullMatrix<double> &to_w,
             Vector<double> &out)
 {
+  const SlabLayout slab{m1};
   thread_local Vector<double> loc;
   loc.reinit(dofs.size(), true);
   for (unsigned int l = 0; l < dofs.size(); ++l)
-    loc(l) = U(dofs[l] * m1 + k);
+    loc(l) = U(slab.index(dofs[l], k));
   out.reinit(to_w.m(), true);
   to_w.vmult(out, loc);
 }

@@ -1,6 +1,7 @@
 #include "adaptivity/spatial_operators.h"
 
 #include "adaptivity/temporal_reconstruction.h"
+#include "time/slab_vector.h"
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -92,12 +93,13 @@ template <int dim> struct CellMap
 void LocalMap::apply(const Vector<double> &global, Vector<double> &local,
                      unsigned int stride, unsigned int offset) const
 {
+  const SlabLayout slab{stride};
   local.reinit(matrix.m());
   for (unsigned int m = 0; m < matrix.m(); ++m)
   {
     double s = 0;
     for (unsigned int c = 0; c < dofs.size(); ++c)
-      s += matrix(m, c) * global(dofs[c] * stride + offset);
+      s += matrix(m, c) * global(slab.index(dofs[c], offset));
     local(m) = s;
   }
 }

@@ -1,7 +1,7 @@
 #include "goal/goal.h"
 
 #include "config/errors.h"
-#include "slab/kronecker.h"
+#include "time/slab_vector.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>

@@ -11,7 +11,7 @@
 #include <deal.II/lac/sparse_direct.h>
 
 #include "config/parameters.h"
-#include "slab/kronecker.h"
+#include "time/kronecker.h"
 #include "solver/iterative_solver.h"
 #include "space/space.h"
 #include "time/temporal_basis.h"

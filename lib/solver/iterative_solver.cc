@@ -141,6 +141,7 @@ RCP<Matrix> kron_block_tpetra(const RCP<const Map> &map,
   const auto A1 = to_tpetra(smap, S1, 1., nullptr, 0., transpose);
   const auto A2 = to_tpetra(smap, S2, 1., nullptr, 0., transpose);
   const std::size_t n = S1.m(), nnz = A1->getNodeNumEntries();
+  const SlabLayout block{nb};
   Teuchos::ArrayRCP<std::size_t> ptr(n * nb + 1, 0);
   Teuchos::ArrayRCP<LO> col(nnz * nb * nb);
   Teuchos::ArrayRCP<double> val(nnz * nb * nb);
@@ -156,10 +157,10 @@ RCP<Matrix> kron_block_tpetra(const RCP<const Map> &map,
       for (std::size_t e = 0; e < c1.extent(0); ++e)
         for (unsigned int t = 0; t < nb; ++t)
         {
-          col[q] = static_cast<LO>(c1(e) * nb + t);
+          col[q] = static_cast<LO>(block.index(c1(e), t));
           val[q++] = Tb(s, t) * v1(e) + (s == t ? v2(e) : 0.);
         }
-      ptr[i * nb + s + 1] = q;
+      ptr[block.index(i, s) + 1] = q;
     }
   }
   auto M = rcp(new Matrix(map, map, ptr, col, val));
@@ -499,6 +500,7 @@ public:
       throw std::logic_error(
           "kronecker preconditioner: transposed apply not implemented");
     const std::size_t n = space_map->getNodeNumElements();
+    const SlabLayout slab{m};
     for (std::size_t c = 0; c < X.getNumVectors(); ++c)
     {
       {
@@ -511,7 +513,7 @@ public:
           {
             double s = 0;
             for (unsigned int l = 0; l < m; ++l)
-              s += P(k, l) * x[i * m + l];
+              s += P(k, l) * x[slab.index(i, l)];
             g[k][i] = s;
           }
       }
@@ -579,7 +581,8 @@ public:
           double s = 0;
           for (unsigned int l = 0; l < m; ++l)
             s += Q(k, l) * yy[l][i];
-          out[i * m + k] = (beta == 0. ? 0. : beta * out[i * m + k]) + alpha * s;
+          out[slab.index(i, k)] =
+              (beta == 0. ? 0. : beta * out[slab.index(i, k)]) + alpha * s;
         }
     }
   }
@@ -653,6 +656,7 @@ public:
     if (mode != Teuchos::NO_TRANS)
       throw std::logic_error("Kronecker operator: transposed apply not implemented");
     const std::size_t n = space_map->getNodeNumElements();
+    const SlabLayout slab{m};
     for (std::size_t c = 0; c < X.getNumVectors(); ++c)
     {
       {
@@ -661,7 +665,7 @@ public:
         {
           auto xk = xs[k]->getDataNonConst();
           for (std::size_t i = 0; i < n; ++i)
-            xk[i] = x[i * m + k];
+            xk[i] = x[slab.index(i, k)];
         }
       }
       for (unsigned int k = 0; k < m; ++k)
@@ -684,7 +688,8 @@ public:
       {
         auto yk = ys[k]->getData();
         for (std::size_t i = 0; i < n; ++i)
-          y[i * m + k] = (beta == 0. ? 0. : beta * y[i * m + k]) + alpha * yk[i];
+          y[slab.index(i, k)] =
+              (beta == 0. ? 0. : beta * y[slab.index(i, k)]) + alpha * yk[i];
       }
     }
   }

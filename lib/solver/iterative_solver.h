@@ -7,7 +7,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
-#include "slab/kronecker.h"
+#include "time/kronecker.h"
 
 #include <memory>
 #include <stdexcept>
