@@ -4,6 +4,7 @@
 #include "config/parameters.h"
 #include "scene/scene.h"
 #include "slab/primal_march.h"
+#include "study/options.h"
 
 #include <deal.II/grid/tria.h>
 

@@ -10,7 +10,6 @@
 // reused while tau does not change.
 #include <deal.II/lac/sparse_direct.h>
 
-#include "config/parameters.h"
 #include "time/kronecker.h"
 #include "solver/iterative_solver.h"
 #include "space/space.h"
@@ -80,9 +79,6 @@ bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m
 /// for n_space m unknowns).
 bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
                         unsigned int degree, bool factorization_reused);
-
-/// The solver section of the run parameters.
-SlabSolverOptions slab_solver_options(const Parameters &prm);
 
 template <int dim>
 class SlabOperator

@@ -1,5 +1,6 @@
 #include "study/dwr.h"
 #include "study/memory_estimate.h"
+#include "study/options.h"
 #include "study/probes.h"
 
 #include "adaptivity/estimator.h"
