@@ -27,8 +27,7 @@ template <int dim> void CellKernel<dim>::build_adjoint_matrices()
         const double zj = fv_w.shape_value(j, q);
         const Tensor<1, dim> &gz = fv_w.shape_grad(j, q);
         const double test_s = b * gz; // per unit delta_K
-        adj_matrices[0](l, j) +=
-            jx * (eps * (gphi * gz) + (b * gphi + alpha * phi) * zj);
+        adj_matrices[0](l, j) += jx * (eps * (gphi * gz) + (b * gphi + alpha * phi) * zj);
         adj_matrices[1](l, j) += jx * phi * zj;
         adj_matrices[2](l, j) += jx * op * test_s;
         adj_matrices[3](l, j) += jx * phi * test_s;

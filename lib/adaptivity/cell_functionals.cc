@@ -201,8 +201,8 @@ void CellKernel<dim>::goal_functional(double tau, const Vector<double> &jt,
 template void CellKernel<2>::primal_functionals(double, double, const Vector<double> &,
                                                 const Vector<double> *, SlabFunctional &,
                                                 SlabFunctional &) const;
-template void CellKernel<2>::adjoint_functional(double, double, const SlabFunction &, bool,
-                                                SlabFunctional &) const;
+template void CellKernel<2>::adjoint_functional(double, double, const SlabFunction &,
+                                                bool, SlabFunctional &) const;
 template void CellKernel<2>::goal_functional(double, const Vector<double> &,
                                              SlabFunctional &) const;
 } // namespace anisodwr

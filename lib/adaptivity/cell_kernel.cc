@@ -14,8 +14,8 @@ CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
     : primal(primal), scene(primal.scene), fe_p(primal.finite_element()), fe_w(fe_w),
       basis(basis), quad(fe_w.degree + 2), fquad(fe_w.degree + 2),
       fv_p(primal.mapping(), fe_p, quad,
-           update_values | update_gradients | update_hessians |
-               update_quadrature_points | update_JxW_values),
+           update_values | update_gradients | update_hessians | update_quadrature_points |
+               update_JxW_values),
       fv_w(primal.mapping(), fe_w, quad,
            update_values | update_gradients | update_hessians),
       ff_p(primal.mapping(), fe_p, fquad,
@@ -160,7 +160,8 @@ void CellKernel<dim>::combine(const Vector<double> &U,
   }
 }
 
-template CellKernel<2>::CellKernel(const Space<2> &, const FE_Q<2> &, const TemporalBasis &);
+template CellKernel<2>::CellKernel(const Space<2> &, const FE_Q<2> &,
+                                   const TemporalBasis &);
 template void CellKernel<2>::reinit(const cell_iterator &);
 template void CellKernel<2>::combine(const Vector<double> &,
                                      const std::vector<types::global_dof_index> &,

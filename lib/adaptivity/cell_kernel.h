@@ -101,12 +101,14 @@ private:
   /// c_l = scale * sum_k a_k U(dofs_l (r+1) + k)
   void combine(const dealii::Vector<double> &U,
                const std::vector<dealii::types::global_dof_index> &dofs,
-               const std::vector<double> &a, double scale, dealii::Vector<double> &c) const;
+               const std::vector<double> &a, double scale,
+               dealii::Vector<double> &c) const;
 
   /// rho += the face terms at Gauss point m (time t, weight wt) for u's coefficients c:
   /// half the flux jump (interior), the Neumann mismatch, -eps d_n u (Dirichlet).
-  void add_face_terms(unsigned int m, double t, double wt, const dealii::Vector<double> &Un,
-                      const dealii::Vector<double> &c, SlabFunctional &rho) const;
+  void add_face_terms(unsigned int m, double t, double wt,
+                      const dealii::Vector<double> &Un, const dealii::Vector<double> &c,
+                      SlabFunctional &rho) const;
 
   /// rho and S += the temporal jump terms of u^+ - u^- at t0.
   void add_temporal_jump(double t0, double delta, const dealii::Vector<double> &Un,

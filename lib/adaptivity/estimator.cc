@@ -92,8 +92,8 @@ IndicatorAssembly<dim>::IndicatorAssembly(
     : primal(primal), adjoint(adjoint), mesh(mesh), basis(basis), U(U), Z(Z),
       time_indicator(time_indicator), hi(hi),
       tria(primal.dof_handler().get_triangulation()),
-      ops(primal.dof_handler(), weight_degree(primal, adjoint)), fe_w(ops.weight_element()),
-      P(ops.interpolation_from(primal.finite_element())),
+      ops(primal.dof_handler(), weight_degree(primal, adjoint)),
+      fe_w(ops.weight_element()), P(ops.interpolation_from(primal.finite_element())),
       Q(ops.interpolation_from(adjoint.finite_element())), kernel(primal, fe_w, basis),
       recon(basis), goal_t(primal.mapping(), fe_w, tria, goals, true),
       goal_T(primal.mapping(), fe_w, tria, goals, false), N(mesh.n_slabs()),
@@ -161,8 +161,8 @@ void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell, Indicators<dim>
 }
 
 template <int dim>
-void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c, Indicators<dim> &ind,
-                                      double &supg_part,
+void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
+                                      Indicators<dim> &ind, double &supg_part,
                                       std::array<double, dim> &lift_size)
 {
   const double t0 = mesh.start(n), tau = mesh.tau(n);
@@ -366,11 +366,12 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
          const TimeIndicator time_indicator, const HigherOrderPrimal *hi)
 {
   if ((time_indicator == TimeIndicator::higher_order) != (hi != nullptr))
-    throw std::invalid_argument(
-        "estimate: the higher_order time indicator needs the dG(r+1) primal (and only it)");
+    throw std::invalid_argument("estimate: the higher_order time indicator needs the "
+                                "dG(r+1) primal (and only it)");
   if (hi && (hi->basis.n_dofs() != basis.n_dofs() + 1 || hi->U.size() != mesh.n_slabs()))
-    throw std::invalid_argument("estimate: the higher-order primal must be dG(r+1) on the "
-                                "same slabs");
+    throw std::invalid_argument(
+        "estimate: the higher-order primal must be dG(r+1) on the "
+        "same slabs");
   IndicatorAssembly<dim> assembly(primal, adjoint, mesh, basis, U, Z, goals,
                                   time_indicator, hi);
   const auto &tria = primal.dof_handler().get_triangulation();
@@ -383,10 +384,8 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
   return ind;
 }
 
-template Indicators<2> estimate<2>(const Space<2> &, const Space<2> &, const TimeMesh &,
-                                   const TemporalBasis &,
-                                   const std::vector<Vector<double>> &,
-                                   const std::vector<Vector<double>> &,
-                                   const std::vector<GoalSpec> &, TimeIndicator,
-                                   const HigherOrderPrimal *);
+template Indicators<2>
+estimate<2>(const Space<2> &, const Space<2> &, const TimeMesh &, const TemporalBasis &,
+            const std::vector<Vector<double>> &, const std::vector<Vector<double>> &,
+            const std::vector<GoalSpec> &, TimeIndicator, const HigherOrderPrimal *);
 } // namespace anisodwr

@@ -118,6 +118,5 @@ std::vector<double> LocalizedForms<dim>::adjoint_form(
   return out;
 }
 
-
 template struct LocalizedForms<2>;
 } // namespace anisodwr

@@ -113,7 +113,6 @@ void AmgBlock::apply(const Vec &in, Vec &out) const
   Epetra_Vector ey(View, *map, y.getRawPtr());
   const int err = amg->trilinos_operator().ApplyInverse(ex, ey);
   if (err != 0)
-    throw std::runtime_error("AMG (ML) application failed, error " +
-                             std::to_string(err));
+    throw std::runtime_error("AMG (ML) application failed, error " + std::to_string(err));
 }
 } // namespace anisodwr::tpetra

@@ -12,6 +12,7 @@
 #include <BelosLinearProblem.hpp>
 #include <BelosStatusTest.hpp>
 #include <BelosTpetraAdapter.hpp>
+#include <Tpetra_BlockCrsMatrix.hpp>
 #include <Tpetra_BlockCrsMatrix_Helpers.hpp>
 
 #include <algorithm>
@@ -93,7 +94,10 @@ const char *preconditioner_names()
          "presb";
 }
 
-const char *spatial_preconditioner_names() { return "ilu|amg"; }
+const char *spatial_preconditioner_names()
+{
+  return "ilu|amg";
+}
 
 struct IterativeSlabSolver::Impl
 {
@@ -176,6 +180,13 @@ namespace
 /// the true residual of the iterate.
 struct BelosRun
 {
+  BelosRun(const IterativeOptions &o, const RCP<OP> &op, const RCP<OP> &prec,
+           const RCP<const Map> &map, double bnorm)
+      : o(o), op(op), prec(prec), X(rcp(new MV(map, 1))), B(rcp(new MV(map, 1))),
+        bnorm(bnorm)
+  {
+  }
+
   const IterativeOptions &o;
   const RCP<OP> &op, &prec;
   RCP<MV> X, B;
@@ -256,9 +267,8 @@ struct BelosRun
       if (!(now * o.stagnation_factor < before) && stats.iterations < o.max_iterations)
       {
         std::ostringstream m;
-        m << "stagnated: the residual fell by " << (now > 0. ? before / now : 0.)
-          << " < " << o.stagnation_factor << " over the last " << chunk
-          << " iterations";
+        m << "stagnated: the residual fell by " << (now > 0. ? before / now : 0.) << " < "
+          << o.stagnation_factor << " over the last " << chunk << " iterations";
         stagnation = m.str();
         break;
       }
@@ -316,7 +326,7 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
     x = 0.;
     return stats;
   }
-  BelosRun run{d.o, d.op, d.prec, rcp(new MV(d.map, 1)), rcp(new MV(d.map, 1)), bnorm};
+  BelosRun run(d.o, d.op, d.prec, d.map, bnorm);
   {
     auto bd = run.B->getDataNonConst(0);
     auto xd = run.X->getDataNonConst(0);

@@ -73,7 +73,8 @@ void KroneckerOperator::apply(const MV &X, MV &Y, Teuchos::ETransp mode, double 
     {
       auto yk = ys[k]->getData();
       for (std::size_t i = 0; i < n; ++i)
-        y[slab.index(i, k)] = (beta == 0. ? 0. : beta * y[slab.index(i, k)]) + alpha * yk[i];
+        y[slab.index(i, k)] =
+            (beta == 0. ? 0. : beta * y[slab.index(i, k)]) + alpha * yk[i];
     }
   }
 }

@@ -88,7 +88,8 @@ void KroneckerPreconditioner::schur_form(const KronSplit &k, bool transpose)
 }
 
 KroneckerPreconditioner::Block
-KroneckerPreconditioner::make_block(unsigned int j, const dealii::SparseMatrix<double> &S1,
+KroneckerPreconditioner::make_block(unsigned int j,
+                                    const dealii::SparseMatrix<double> &S1,
                                     const dealii::SparseMatrix<double> &S2,
                                     bool transpose, const IterativeOptions &o) const
 {
@@ -254,7 +255,8 @@ void KroneckerPreconditioner::from_schur_basis(MV &Y, std::size_t column, double
       double s = 0;
       for (unsigned int l = 0; l < m; ++l)
         s += Q(k, l) * yy[l][i];
-      out[slab.index(i, k)] = (beta == 0. ? 0. : beta * out[slab.index(i, k)]) + alpha * s;
+      out[slab.index(i, k)] =
+          (beta == 0. ? 0. : beta * out[slab.index(i, k)]) + alpha * s;
     }
 }
 } // namespace anisodwr::tpetra

@@ -4,7 +4,8 @@ namespace anisodwr
 {
 using namespace dealii;
 
-void extract_block(const Vector<double> &U, unsigned int k, unsigned int m, Vector<double> &u)
+void extract_block(const Vector<double> &U, unsigned int k, unsigned int m,
+                   Vector<double> &u)
 {
   const SlabLayout slab{m};
   const auto n = U.size() / m;
@@ -13,7 +14,8 @@ void extract_block(const Vector<double> &U, unsigned int k, unsigned int m, Vect
     u(i) = U(slab.index(i, k));
 }
 
-void insert_block(const Vector<double> &u, unsigned int k, unsigned int m, Vector<double> &U)
+void insert_block(const Vector<double> &u, unsigned int k, unsigned int m,
+                  Vector<double> &U)
 {
   const SlabLayout slab{m};
   for (types::global_dof_index i = 0; i < u.size(); ++i)
@@ -30,7 +32,8 @@ void add_kron_vector(double factor, const std::vector<double> &a, const Vector<d
       U(slab.index(i, k)) += factor * a[k] * c(i);
 }
 
-void combine_blocks(const Vector<double> &U, const std::vector<double> &c, Vector<double> &u)
+void combine_blocks(const Vector<double> &U, const std::vector<double> &c,
+                    Vector<double> &u)
 {
   const SlabLayout slab{static_cast<unsigned int>(c.size())};
   const unsigned int m = slab.m;

@@ -26,8 +26,8 @@ void extract_block(const dealii::Vector<double> &U, unsigned int k, unsigned int
 void insert_block(const dealii::Vector<double> &u, unsigned int k, unsigned int m,
                   dealii::Vector<double> &U);
 /// U += factor * (a (x) c): adds factor * a_k * c to temporal block k of U.
-void add_kron_vector(double factor, const std::vector<double> &a, const dealii::Vector<double> &c,
-                     dealii::Vector<double> &U);
+void add_kron_vector(double factor, const std::vector<double> &a,
+                     const dealii::Vector<double> &c, dealii::Vector<double> &U);
 /// sum_k c_k U_k: e.g. the value u(t) = sum_k l_k(s) U_k.
 void combine_blocks(const dealii::Vector<double> &U, const std::vector<double> &c,
                     dealii::Vector<double> &u);
