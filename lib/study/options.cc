@@ -14,6 +14,20 @@ SceneOptions scene_options(const Parameters &prm)
   return o;
 }
 
+GoalInput goal_input(const Parameters &prm)
+{
+  GoalInput in;
+  in.kind = prm.goal_kind;
+  in.locations = prm.goal_locations;
+  in.over_time = prm.goal_over_time;
+  in.radius = prm.goal_radius;
+  in.weights = prm.goal_weights;
+  in.locations_source = prm.source("goal.locations");
+  in.radius_source = prm.source("goal.radius");
+  in.weights_source = prm.source("goal.weights");
+  return in;
+}
+
 SlabSolverOptions slab_solver_options(const Parameters &prm)
 {
   SlabSolverOptions o;
