@@ -5,7 +5,7 @@
 #include "config/parameters.h"
 #include "goal/goal_input.h"
 #include "scene/scene.h"
-#include "slab/slab_operator.h"
+#include "slab/slab_solver_options.h"
 
 #include <memory>
 
