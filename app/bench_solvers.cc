@@ -21,6 +21,7 @@
 #include "scene/scene.h"
 #include "slab/adjoint_march.h"
 #include "slab/primal_march.h"
+#include "study/options.h"
 
 #include <deal.II/grid/tria.h>
 

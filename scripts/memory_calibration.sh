@@ -17,13 +17,13 @@ run() {
   echo "== $name" >&2
   "$bin" run "$@" --output "$OUT/$name" >"$OUT/$name.log"
 }
-run moving_hump_direct "$ROOT/config/moving_hump.json" --set adaptivity.loops=16 --set output.vtu_loops=0
-run moving_hump_krylov "$ROOT/config/moving_hump.json" --set adaptivity.loops=14 \
+run moving_hump_direct "$ROOT/config/moving_hump.json" --set discretization.r=1 --set adaptivity.space_indicator=average --set adaptivity.loops=16 --set output.vtu_loops=0
+run moving_hump_krylov "$ROOT/config/moving_hump.json" --set discretization.r=1 --set adaptivity.space_indicator=average --set adaptivity.loops=14 \
   --set solver.type=iterative --set output.vtu_loops=0
 run hemker "$ROOT/config/hemker.json" --set adaptivity.loops=17 --set output.vtu_loops=0
 for ref in 6 7 8; do
   run single_ref$ref "$ROOT/config/moving_hump.json" --set study.mode=single \
-    --set discretization.initial_refinements=$ref --set output.vtu_every=0
+    --set discretization.initial_refinements=$ref --set discretization.r=1 --set output.vtu_every=0
 done
 /usr/bin/python3 - "$OUT" <<'PY' | tee "$OUT/memory_calibration.md"
 import csv, json, sys

@@ -4,6 +4,7 @@
 #include "config/parameters.h"
 #include "goal/goal.h"
 #include "slab/adjoint_march.h"
+#include "study/options.h"
 
 #include <deal.II/grid/tria.h>
 

@@ -4,6 +4,7 @@
 #include "config/parameters.h"
 #include "scene/scene.h"
 #include "study/study.h"
+#include "study/options.h"
 
 #include <gtest/gtest.h>
 

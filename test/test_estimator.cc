@@ -8,6 +8,7 @@
 #include "config/parameters.h"
 #include "slab/adjoint_march.h"
 #include "slab/primal_march.h"
+#include "study/options.h"
 
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/grid/grid_generator.h>

@@ -6,6 +6,7 @@
 #include "config/parameters.h"
 #include "goal/goal.h"
 #include "scene/scene.h"
+#include "study/options.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>

@@ -4,6 +4,7 @@
 // Neumann data, time-dependent b and alpha, SUPG on).
 #include "slab/primal_march.h"
 #include "study/errors.h"
+#include "study/options.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>

@@ -24,7 +24,10 @@
 //   scheme) and its derivative, cell by cell.
 // Temporal integrals use r+2 Gauss points per slab (as the slab load does).
 //
-// This module reads solutions and meshes; it does not solve.
+// This module reads solutions and meshes and solves no system itself: the end-time
+// value of the adjoint, z(T^+) = M^{-1} j_T, comes from end_time_representer
+// (slab/adjoint_march.h). The cell integrals are in cell_kernel.h; the localized forms
+// for the tests in localized_forms.cc.
 #include "goal/goal.h"
 #include "space/space.h"
 #include "time/temporal_basis.h"

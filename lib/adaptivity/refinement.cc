@@ -29,13 +29,13 @@ std::vector<unsigned int> largest(const std::vector<double> &v, double theta)
   return order;
 }
 
-} // namespace
-
+/// The refinement case of each active cell from the directional indicators
+/// (adaptivity.mode and adaptivity.marking), before the mesh closure; n active cells.
 template <int dim>
-MarkingStats mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
-                        const MarkingOptions &options)
+std::vector<RefinementCase<dim>> refinement_cases(unsigned int n,
+                                                  const Indicators<dim> &ind,
+                                                  const MarkingOptions &options)
 {
-  const unsigned int n = tria.n_active_cells();
   std::vector<RefinementCase<dim>> cut(n, RefinementCase<dim>::no_refinement);
   if (options.mode == "uniform")
     std::fill(cut.begin(), cut.end(), RefinementCase<dim>::isotropic_refinement);
@@ -83,6 +83,16 @@ MarkingStats mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
       for (unsigned int c : largest(eta, options.theta_h))
         cut[c] = cut[c] | RefinementCase<dim>::cut_axis(i);
     }
+  return cut;
+}
+} // namespace
+
+template <int dim>
+MarkingStats mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
+                        const MarkingOptions &options)
+{
+  const unsigned int n = tria.n_active_cells();
+  const std::vector<RefinementCase<dim>> cut = refinement_cases(n, ind, options);
   std::vector<bool> coarsen(n, false);
   if (options.theta_coarsen > 0 && options.mode != "uniform")
   {

@@ -1,6 +1,7 @@
 #include "adaptivity/spatial_operators.h"
 
 #include "adaptivity/temporal_reconstruction.h"
+#include "time/slab_vector.h"
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -87,17 +88,61 @@ template <int dim> struct CellMap
     return {lo, hi};
   }
 };
+/// The cell of a patch holding the grid point xi (unit coordinates of maps[0]'s cell),
+/// with the point in that cell's unit coordinates (xc): maps[0]'s cell if xi is inside
+/// it, else the candidate containing the point or, on curved patches (children placed
+/// on a manifold do not tile their parent's straight-edged image exactly), the nearest
+/// one if the point is at most `slack` outside it. maps.size() if there is none.
+template <int dim>
+unsigned int locate(const std::vector<CellMap<dim>> &maps, const Point<dim> &xi,
+                    Point<dim> &xc)
+{
+  const double tol = 1e-8, slack = 0.2;
+  auto inside = [&](const Point<dim> &x)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (x[d] < -tol || x[d] > 1 + tol)
+        return false;
+    return true;
+  };
+  unsigned int c_found = maps.size();
+  if (inside(xi))
+  {
+    c_found = 0;
+    xc = xi;
+  }
+  else
+  {
+    const Point<dim> x = maps[0].to_real(xi);
+    double best = slack;
+    for (unsigned int c = 1; c < maps.size() && best > 0.; ++c)
+    {
+      const Point<dim> y = maps[c].to_unit(x);
+      double outside = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        outside = std::max(outside, std::max(-y[d], y[d] - 1.));
+      if (outside < best)
+      {
+        best = std::max(outside, 0.);
+        c_found = c;
+        xc = y;
+      }
+    }
+  }
+  return c_found;
+}
 } // namespace
 
 void LocalMap::apply(const Vector<double> &global, Vector<double> &local,
                      unsigned int stride, unsigned int offset) const
 {
+  const SlabLayout slab{stride};
   local.reinit(matrix.m());
   for (unsigned int m = 0; m < matrix.m(); ++m)
   {
     double s = 0;
     for (unsigned int c = 0; c < dofs.size(); ++c)
-      s += matrix(m, c) * global(dofs[c] * stride + offset);
+      s += matrix(m, c) * global(slab.index(dofs[c], offset));
     local(m) = s;
   }
 }
@@ -246,14 +291,6 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator & /*K = candidates[0]*
   std::vector<CellMap<dim>> maps;
   for (const auto &c : candidates)
     maps.emplace_back(c);
-  const double tol = 1e-8, slack = 0.2;
-  auto inside = [&](const Point<dim> &x)
-  {
-    for (unsigned int d = 0; d < dim; ++d)
-      if (x[d] < -tol || x[d] > 1 + tol)
-        return false;
-    return true;
-  };
   for (unsigned int g = 0; g < n_grid; ++g)
   {
     Point<dim> xi;
@@ -263,35 +300,8 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator & /*K = candidates[0]*
       rest /= n[d];
       xi[d] = nodes[d][a[d]];
     }
-    // locate the grid point
-    unsigned int c_found = candidates.size();
     Point<dim> xc;
-    if (inside(xi))
-    {
-      c_found = 0;
-      xc = xi;
-    }
-    else
-    {
-      // The candidate containing the point, or, on curved patches (children placed on
-      // a manifold do not tile their parent's straight-edged image exactly), the
-      // nearest one if the point is at most `slack` outside it.
-      const Point<dim> x = maps[0].to_real(xi);
-      double best = slack;
-      for (unsigned int c = 1; c < candidates.size() && best > 0.; ++c)
-      {
-        const Point<dim> y = maps[c].to_unit(x);
-        double outside = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          outside = std::max(outside, std::max(-y[d], y[d] - 1.));
-        if (outside < best)
-        {
-          best = std::max(outside, 0.);
-          c_found = c;
-          xc = y;
-        }
-      }
-    }
+    const unsigned int c_found = locate(maps, xi, xc);
     if (c_found == candidates.size())
       return LocalMap();
     for (unsigned int d = 0; d < dim; ++d)

@@ -34,7 +34,7 @@ struct LocalMap
   std::vector<dealii::types::global_dof_index> dofs;
   dealii::FullMatrix<double> matrix;
   /// local = matrix * global(dofs * stride + offset) (stride r+1 and offset k pick
-  /// temporal node k of an interleaved slab vector).
+  /// temporal node k of an interleaved slab vector, time/slab_vector.h).
   void apply(const dealii::Vector<double> &global, dealii::Vector<double> &local,
              unsigned int stride = 1, unsigned int offset = 0) const;
 };

@@ -1,7 +1,7 @@
 #include "goal/goal.h"
 
 #include "config/errors.h"
-#include "slab/kronecker.h"
+#include "time/slab_vector.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -300,6 +300,62 @@ struct Integral
   bool converged = true;
 };
 
+/// One piece of the interval in integrate(): 10-point Gauss on the whole piece and on
+/// its halves (with the same for |f|) and the error estimate |left + right - whole|.
+struct Piece
+{
+  double lo, hi, whole, left, right, abs_left, abs_right, err;
+  bool operator<(const Piece &o) const { return err < o.err; }
+};
+
+/// 10-point Gauss of f on [lo, hi] (abs_sum: of |f|), charged to the budget.
+template <typename F>
+double gauss(const F &f, double lo, double hi, double &abs_sum, Budget &budget)
+{
+  static const QGauss<1> q(10);
+  double s = 0, t = 0;
+  for (unsigned int i = 0; i < q.size(); ++i)
+  {
+    const double v = f(lo + (hi - lo) * q.point(i)[0]);
+    s += q.weight(i) * v;
+    t += q.weight(i) * std::abs(v);
+  }
+  budget.remaining -= std::min<std::size_t>(budget.remaining, q.size());
+  abs_sum = t * (hi - lo);
+  return s * (hi - lo);
+}
+
+/// The piece [lo, hi] whose Gauss value on the whole is `whole`.
+template <typename F>
+Piece make_piece(const F &f, double lo, double hi, double whole, Budget &budget)
+{
+  Piece p{lo, hi, whole, 0, 0, 0, 0, 0};
+  const double m = 0.5 * (lo + hi);
+  p.left = gauss(f, lo, m, p.abs_left, budget);
+  p.right = gauss(f, m, hi, p.abs_right, budget);
+  p.err = std::abs(p.left + p.right - p.whole);
+  if (!std::isfinite(p.err))
+    p.err = std::numeric_limits<double>::infinity();
+  return p;
+}
+
+/// The sums over the frozen pieces, then over the open ones (largest error first).
+Integral totals(const std::vector<Piece> &frozen, std::priority_queue<Piece> pieces)
+{
+  Integral r;
+  auto add = [&](const Piece &p)
+  {
+    r.value += p.left + p.right;
+    r.l1 += p.abs_left + p.abs_right;
+    r.error += p.err;
+  };
+  for (const auto &p : frozen)
+    add(p);
+  for (; !pieces.empty(); pieces.pop())
+    add(pieces.top());
+  return r;
+}
+
 /// Globally adaptive 1D quadrature: on every piece, 10-point Gauss on the piece and on
 /// its two halves; their difference is the piece's error estimate. The piece with the
 /// largest estimate is bisected until the sum of the estimates is at most
@@ -311,36 +367,6 @@ template <typename F>
 Integral integrate(const F &f, double a, double b, double rel_tol, double abs_tol,
                    Budget &budget)
 {
-  static const QGauss<1> q(10);
-  struct Piece
-  {
-    double lo, hi, whole, left, right, abs_left, abs_right, err;
-    bool operator<(const Piece &o) const { return err < o.err; }
-  };
-  auto gauss = [&](double lo, double hi, double &abs_sum)
-  {
-    double s = 0, t = 0;
-    for (unsigned int i = 0; i < q.size(); ++i)
-    {
-      const double v = f(lo + (hi - lo) * q.point(i)[0]);
-      s += q.weight(i) * v;
-      t += q.weight(i) * std::abs(v);
-    }
-    budget.remaining -= std::min<std::size_t>(budget.remaining, q.size());
-    abs_sum = t * (hi - lo);
-    return s * (hi - lo);
-  };
-  auto make = [&](double lo, double hi, double whole)
-  {
-    Piece p{lo, hi, whole, 0, 0, 0, 0, 0};
-    const double m = 0.5 * (lo + hi);
-    p.left = gauss(lo, m, p.abs_left);
-    p.right = gauss(m, hi, p.abs_right);
-    p.err = std::abs(p.left + p.right - p.whole);
-    if (!std::isfinite(p.err))
-      p.err = std::numeric_limits<double>::infinity();
-    return p;
-  };
   Integral result;
   if (!(b > a))
     return result;
@@ -348,25 +374,9 @@ Integral integrate(const F &f, double a, double b, double rel_tol, double abs_to
   std::priority_queue<Piece> pieces;
   std::vector<Piece> frozen;
   const double min_width = 1e-13 * (b - a);
-  pieces.push(make(a, b, gauss(a, b, unused)));
-  auto totals = [&]()
-  {
-    Integral r;
-    auto add = [&](const Piece &p)
-    {
-      r.value += p.left + p.right;
-      r.l1 += p.abs_left + p.abs_right;
-      r.error += p.err;
-    };
-    for (const auto &p : frozen)
-      add(p);
-    auto copy = pieces;
-    for (; !copy.empty(); copy.pop())
-      add(copy.top());
-    return r;
-  };
+  pieces.push(make_piece(f, a, b, gauss(f, a, b, unused, budget), budget));
   // running sums (exact sums are recomputed before stopping)
-  Integral run = totals();
+  Integral run = totals(frozen, pieces);
   double frozen_error = 0;
   while (true)
   {
@@ -376,7 +386,7 @@ Integral integrate(const F &f, double a, double b, double rel_tol, double abs_to
     if (run.error <= target || run.error - frozen_error <= 0.1 * target ||
         pieces.empty() || budget.remaining == 0)
     {
-      result = totals();
+      result = totals(frozen, pieces);
       if (!std::isfinite(result.value) || !std::isfinite(result.error))
       {
         result.converged = false;
@@ -403,7 +413,8 @@ Integral integrate(const F &f, double a, double b, double rel_tol, double abs_to
       frozen_error += p.err;
       continue;
     }
-    const Piece l = make(p.lo, m, p.left), r = make(m, p.hi, p.right);
+    const Piece l = make_piece(f, p.lo, m, p.left, budget),
+                r = make_piece(f, m, p.hi, p.right, budget);
     run.value += l.left + l.right + r.left + r.right - p.left - p.right;
     run.l1 += l.abs_left + l.abs_right + r.abs_left + r.abs_right - p.abs_left -
               p.abs_right;
@@ -415,30 +426,27 @@ Integral integrate(const F &f, double a, double b, double rel_tol, double abs_to
 
 /// Evaluations of u allowed for one exact goal value (about a second).
 constexpr std::size_t exact_goal_budget = 40'000'000;
-} // namespace
 
-template <int dim>
-double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol)
+/// The nested integrals of one exact goal value, sharing one budget: the inner ones are
+/// computed 10x more accurately than the outer one needs, so that their errors do not
+/// look like features of the outer integrand. Each outer integral takes two passes: a
+/// cheap first pass (one bisection per integral) estimates the scale
+/// S = int |integrand|, the second one integrates to tol * S; without the absolute part,
+/// the tails of the mollifier (values near the underflow limit) would never meet a
+/// relative tolerance.
+struct NestedIntegrals
 {
-  static_assert(dim == 2, "exact goals are implemented in 2D");
-  const auto *u = scene.exact();
-  if (!u)
-    throw InputError("goal '" + goal.name + "': the scene has no exact solution");
-  // J is an integral over the domain (as the discrete goal): supports that leave the
-  // scene's box are clipped to it (all scenes with an exact solution are boxes).
-  const auto box = scene.bounding_box();
+  explicit NestedIntegrals(double tol) : tol(tol) {}
+
+  double tol;
   Budget budget{exact_goal_budget};
   double error = 0, scale = 0;
   bool converged = true;
-  // Tolerances of the current pass: a cheap first pass (one bisection per integral)
-  // estimates the scale S = int |integrand|, the second one integrates to
-  // tol * S; without the absolute part, the tails of the mollifier (values near the
-  // underflow limit) would never meet a relative tolerance.
+  /// tolerances of the current pass
   bool coarse = true;
   double abs_outer = 0, abs_inner = 0, coarse_l1 = 0, inner_rel = 0;
-  // Nested integrals: the inner ones are computed 10x more accurately than the outer
-  // one needs, so that their errors do not look like features of the outer integrand.
-  auto outer = [&](const auto &inner_f, double a, double b)
+
+  template <typename F> double outer(const F &inner_f, double a, double b)
   {
     if (coarse)
     {
@@ -456,14 +464,58 @@ double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol)
     scale += std::max(r.l1, coarse_l1);
     converged = converged && r.converged;
     return r.value;
-  };
-  auto inner = [&](const auto &f, double a, double b)
+  }
+
+  template <typename F> double inner(const F &f, double a, double b)
   {
     const Integral r = integrate(f, a, b, 0.1 * tol, abs_inner, budget);
     if (!coarse && !r.converged)
-      inner_rel = std::max(inner_rel, r.error / std::max(r.l1, std::numeric_limits<double>::min()));
+      inner_rel =
+          std::max(inner_rel, r.error / std::max(r.l1, std::numeric_limits<double>::min()));
     return r.value;
-  };
+  }
+};
+
+/// An exact goal value that misses tol: kept with a warning while it is accurate to
+/// 1e-8 of its scale, else InputError.
+void check_accuracy(const GoalSpec &goal, const NestedIntegrals &n, double tol)
+{
+  const double rel = std::max(
+      n.error / std::max(n.scale, std::numeric_limits<double>::min()), n.inner_rel);
+  if (!n.converged && !(rel <= tol))
+  {
+    // Fallback: keep the value when it is still accurate to 1e-8 of its scale
+    // (J_error and I_eff are then only that accurate); otherwise refuse.
+    std::ostringstream msg;
+    msg.precision(2);
+    msg << "goal '" << goal.name << "': the exact goal value reaches a relative accuracy of "
+        << rel << " (wanted " << tol << ")"
+        << (n.budget.exhausted ? " within the work limit of " +
+                                     std::to_string(exact_goal_budget) + " evaluations"
+                               : "");
+    if (!(rel <= 1e-8))
+      throw InputError(msg.str() + "; the layer (scene.epsilon) or the goal (goal.radius, "
+                                   "goal.locations) is too extreme for an exact value");
+    std::cerr << "anisodwr: warning: " << msg.str() << "; J_error and I_eff use it"
+              << std::endl;
+  }
+}
+} // namespace
+
+template <int dim>
+double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol)
+{
+  static_assert(dim == 2, "exact goals are implemented in 2D");
+  const auto *u = scene.exact();
+  if (!u)
+    throw InputError("goal '" + goal.name + "': the scene has no exact solution");
+  // J is an integral over the domain (as the discrete goal): supports that leave the
+  // scene's box are clipped to it (all scenes with an exact solution are boxes).
+  const auto box = scene.bounding_box();
+  NestedIntegrals nested(tol);
+  auto outer = [&](const auto &inner_f, double a, double b)
+  { return nested.outer(inner_f, a, b); };
+  auto inner = [&](const auto &f, double a, double b) { return nested.inner(f, a, b); };
   auto spatial = [&](double t) -> double
   {
     if (goal.kind == "point")
@@ -513,25 +565,7 @@ double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol)
                      "': the exact goal value is not finite (the exact solution is not "
                      "finite on the goal's support); check goal.locations, goal.radius "
                      "and the scene's parameters");
-  const double rel =
-      std::max(error / std::max(scale, std::numeric_limits<double>::min()), inner_rel);
-  if (!converged && !(rel <= tol))
-  {
-    // Fallback: keep the value when it is still accurate to 1e-8 of its scale
-    // (J_error and I_eff are then only that accurate); otherwise refuse.
-    std::ostringstream msg;
-    msg.precision(2);
-    msg << "goal '" << goal.name << "': the exact goal value reaches a relative accuracy of "
-        << rel << " (wanted " << tol << ")"
-        << (budget.exhausted ? " within the work limit of " +
-                                   std::to_string(exact_goal_budget) + " evaluations"
-                             : "");
-    if (!(rel <= 1e-8))
-      throw InputError(msg.str() + "; the layer (scene.epsilon) or the goal (goal.radius, "
-                                   "goal.locations) is too extreme for an exact value");
-    std::cerr << "anisodwr: warning: " << msg.str() << "; J_error and I_eff use it"
-              << std::endl;
-  }
+  check_accuracy(goal, nested, tol);
   return J;
 }
 

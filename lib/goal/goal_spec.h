@@ -16,4 +16,12 @@ struct GoalSpec
   std::vector<double> lower, upper; ///< mean goals: the rectangle
   double weight = 1;
 };
+
+/// The goal with weight 1 (the per-goal values and estimates are unweighted).
+inline GoalSpec unweighted(const GoalSpec &goal)
+{
+  GoalSpec g = goal;
+  g.weight = 1;
+  return g;
+}
 } // namespace anisodwr

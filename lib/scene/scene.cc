@@ -1,7 +1,6 @@
 #include "scene/scene.h"
 
 #include "config/errors.h"
-#include "config/parameters.h"
 #include "scene/scenes.h"
 
 namespace anisodwr
@@ -77,38 +76,38 @@ bool Scene<dim>::contains_box(const dealii::Point<dim> &lo, const dealii::Point<
   return contains(lo) && contains(hi);
 }
 
-template <int dim> std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm)
+template <int dim> std::unique_ptr<Scene<dim>> create_scene(const SceneOptions &o)
 {
   std::unique_ptr<Scene<dim>> scene;
   try
   {
-  if (prm.scene == "moving_hump")
-    scene = std::make_unique<MovingHump>(prm.epsilon, prm.variant);
-  else if (prm.scene == "manufactured")
-    scene = std::make_unique<Manufactured>(prm.epsilon, prm.variant);
-  else if (prm.scene == "heat")
-    scene = std::make_unique<Heat>(prm.epsilon, prm.variant);
-  else if (prm.scene == "boundary_layer")
-    scene = std::make_unique<BoundaryLayer>(prm.epsilon, prm.variant);
-  else if (prm.scene == "hemker")
-    scene = std::make_unique<Hemker>(prm.epsilon, prm.variant);
+  if (o.name == "moving_hump")
+    scene = std::make_unique<MovingHump>(o.epsilon, o.variant);
+  else if (o.name == "manufactured")
+    scene = std::make_unique<Manufactured>(o.epsilon, o.variant);
+  else if (o.name == "heat")
+    scene = std::make_unique<Heat>(o.epsilon, o.variant);
+  else if (o.name == "boundary_layer")
+    scene = std::make_unique<BoundaryLayer>(o.epsilon, o.variant);
+  else if (o.name == "hemker")
+    scene = std::make_unique<Hemker>(o.epsilon, o.variant);
   else
-    throw InputError(prm.source("scene.name") + ": invalid value '" + prm.scene +
+    throw InputError(o.name_source + ": invalid value '" + o.name +
                      "' for key 'scene.name'; expected moving_hump, manufactured, heat, "
                      "boundary_layer or hemker");
-  scene->end_time = prm.end_time;
+  scene->end_time = o.end_time;
   }
   catch (const InputError &e)
   {
     const std::string what = e.what();
     // the scenes' variant errors do not know where the variant came from
-    if (what.rfind("invalid value '" + prm.variant + "' for key 'scene.variant'", 0) == 0)
-      throw InputError(prm.source("scene.variant") + ": " + what);
+    if (what.rfind("invalid value '" + o.variant + "' for key 'scene.variant'", 0) == 0)
+      throw InputError(o.variant_source + ": " + what);
     throw;
   }
   return scene;
 }
 
 template class Scene<2>;
-template std::unique_ptr<Scene<2>> create_scene<2>(const Parameters &);
+template std::unique_ptr<Scene<2>> create_scene<2>(const SceneOptions &);
 } // namespace anisodwr

@@ -20,7 +20,16 @@ template <int dim, int spacedim> class Triangulation;
 
 namespace anisodwr
 {
-struct Parameters;
+/// The scene section of a config and, for messages, where scene.name and
+/// scene.variant came from (a config file's path, "--set" or "default").
+struct SceneOptions
+{
+  std::string name = "moving_hump";
+  std::string variant = "";
+  double epsilon = 1e-6;
+  double end_time = 0.5;
+  std::string name_source = "default", variant_source = "default";
+};
 
 /// Exact solution with analytic derivatives (no finite differences).
 template <int dim> class ExactSolution
@@ -112,6 +121,6 @@ protected:
   std::unique_ptr<ExactSolution<dim>> exact_solution;
 };
 
-/// Builds the scene named in the parameters; InputError on an unknown name/variant.
-template <int dim> std::unique_ptr<Scene<dim>> create_scene(const Parameters &prm);
+/// Builds the scene named in the options; InputError on an unknown name/variant.
+template <int dim> std::unique_ptr<Scene<dim>> create_scene(const SceneOptions &options);
 } // namespace anisodwr

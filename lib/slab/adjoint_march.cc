@@ -1,5 +1,10 @@
 #include "slab/adjoint_march.h"
 
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/numerics/matrix_tools.h>
+
 namespace anisodwr
 {
 using namespace dealii;
@@ -33,6 +38,29 @@ march_adjoint(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis
   return Z;
 }
 
+template <int dim>
+Vector<double> end_time_representer(const Space<dim> &adjoint,
+                                    const std::vector<GoalSpec> &goals)
+{
+  GoalVectors gv = assemble_goal_vectors(adjoint, goals);
+  SparseMatrix<double> M(adjoint.sparsity());
+  MatrixCreator::create_mass_matrix(
+      adjoint.mapping(), adjoint.dof_handler(), QGauss<dim>(adjoint.degree() + 1), M,
+      (const Function<dim> *)nullptr, adjoint.constraints());
+  adjoint.constraints().condense(gv.at_end);
+  for (unsigned int i = 0; i < M.m(); ++i)
+    if (adjoint.constraints().is_constrained(i))
+      M.set(i, i, 1.);
+  SparseDirectUMFPACK lu;
+  lu.initialize(M);
+  Vector<double> zT = gv.at_end;
+  lu.solve(zT);
+  adjoint.constraints().distribute(zT);
+  return zT;
+}
+
+template Vector<double> end_time_representer<2>(const Space<2> &,
+                                                const std::vector<GoalSpec> &);
 template std::vector<Vector<double>>
 march_adjoint<2>(const Space<2> &, const TimeMesh &, const TemporalBasis &,
                  SlabOperator<2> &, const GoalVectors &, const MarchOptions &);

@@ -12,4 +12,10 @@ std::vector<dealii::Vector<double>> march_adjoint(const Space<dim> &space, const
                                                   const TemporalBasis &basis,
                                                   SlabOperator<dim> &op, const GoalVectors &goal,
                                                   const MarchOptions &options);
+
+/// z(T^+) = M^{-1} j_T: the representer of the goals' end-time part in `adjoint`'s space
+/// (mass matrix with its constraints, solved by UMFPACK); the estimator's E_tau z at T.
+template <int dim>
+dealii::Vector<double> end_time_representer(const Space<dim> &adjoint,
+                                            const std::vector<GoalSpec> &goals);
 } // namespace anisodwr

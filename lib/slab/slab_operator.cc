@@ -58,27 +58,6 @@ bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsign
           auto_picks_iterative(options, n_space * m, m, degree, factorization_reused));
 }
 
-SlabSolverOptions slab_solver_options(const Parameters &prm)
-{
-  SlabSolverOptions o;
-  o.type = prm.solver_type;
-  o.reuse_factorization = prm.reuse_factorization;
-  o.auto_threshold = prm.solver_auto_threshold;
-  o.auto_memory_mb = prm.solver_auto_memory_mb;
-  o.fallback = prm.fallback;
-  o.iterative.krylov = prm.krylov;
-  o.iterative.preconditioner = prm.preconditioner;
-  o.iterative.tolerance = prm.solver_tolerance;
-  o.iterative.restart = prm.restart;
-  o.iterative.max_iterations = prm.max_iterations;
-  o.iterative.ilu_fill = prm.ilu_fill;
-  o.iterative.spatial_preconditioner = prm.spatial_preconditioner;
-  o.iterative.amg_smoother = prm.amg_smoother;
-  o.iterative.stagnation_window = prm.stagnation_window;
-  o.iterative.stagnation_factor = prm.stagnation_factor;
-  return o;
-}
-
 template <int dim>
 SlabOperator<dim>::SlabOperator(const Space<dim> &space, const TemporalBasis &basis,
                                 const SlabSolverOptions &options)

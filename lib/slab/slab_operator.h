@@ -10,10 +10,10 @@
 // reused while tau does not change.
 #include <deal.II/lac/sparse_direct.h>
 
-#include "config/parameters.h"
-#include "slab/kronecker.h"
+#include "slab/slab_solver_options.h"
 #include "solver/iterative_solver.h"
 #include "space/space.h"
+#include "time/kronecker.h"
 #include "time/temporal_basis.h"
 
 #include <memory>
@@ -30,27 +30,6 @@ struct SlabTimings
   double precondition = 0;
   unsigned int n_preconditioners = 0, n_krylov_solves = 0, krylov_iterations = 0,
                max_krylov_iterations = 0, n_fallbacks = 0;
-};
-
-/// Slab solver choice (config section solver).
-struct SlabSolverOptions
-{
-  std::string type = "direct"; ///< direct | iterative | auto
-  bool reuse_factorization = true;
-  /// auto: UMFPACK while one factorization serves all slabs and its predicted size
-  /// (predicted_lu_mb) is at most auto_memory_mb (0: a third of the physical memory);
-  /// otherwise iterative iff N_space (r+1)^2 >= auto_threshold.
-  double auto_threshold = 1e6;
-  double auto_memory_mb = 0.;
-  std::string fallback = "direct"; ///< none | direct
-  IterativeOptions iterative;
-
-  static SlabSolverOptions direct(bool reuse)
-  {
-    SlabSolverOptions o;
-    o.reuse_factorization = reuse;
-    return o;
-  }
 };
 
 /// Process-wide totals over all SlabOperators (for summary.json).
@@ -80,9 +59,6 @@ bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m
 /// for n_space m unknowns).
 bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
                         unsigned int degree, bool factorization_reused);
-
-/// The solver section of the run parameters.
-SlabSolverOptions slab_solver_options(const Parameters &prm);
 
 template <int dim>
 class SlabOperator

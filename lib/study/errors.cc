@@ -1,5 +1,7 @@
 #include "study/errors.h"
 
+#include "time/slab_vector.h"
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
@@ -52,7 +54,7 @@ ErrorNorms compute_errors(const Space<dim> &space, const TimeMesh &mesh,
         {
           double c = 0;
           for (unsigned int k = 0; k < m; ++k)
-            c += at[p][k] * U[n](idx[i] * m + k);
+            c += at[p][k] * U[n](SlabLayout{m}.index(idx[i], k));
           coef[p * n_local + i] = c;
         }
       for (unsigned int q = 0; q < quad.size(); ++q)

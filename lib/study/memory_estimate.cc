@@ -1,4 +1,5 @@
 #include "study/memory_estimate.h"
+#include "study/options.h"
 
 #include "config/errors.h"
 #include "io/table.h"

@@ -7,6 +7,7 @@
 #include "slab/primal_march.h"
 #include "study/errors.h"
 #include "study/memory_estimate.h"
+#include "study/options.h"
 
 #include <deal.II/base/timer.h>
 #include <deal.II/grid/grid_tools.h>

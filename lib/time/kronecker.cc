@@ -1,4 +1,4 @@
-#include "slab/kronecker.h"
+#include "time/kronecker.h"
 
 #include <algorithm>
 #include <numeric>
@@ -11,10 +11,11 @@ using namespace dealii;
 void make_kron_sparsity(const SparsityPattern &spatial, unsigned int m, SparsityPattern &out)
 {
   const auto n = spatial.n_rows();
+  const SlabLayout slab{m};
   std::vector<unsigned int> lengths(n * m);
   for (types::global_dof_index i = 0; i < n; ++i)
     for (unsigned int k = 0; k < m; ++k)
-      lengths[i * m + k] = spatial.row_length(i) * m;
+      lengths[slab.index(i, k)] = spatial.row_length(i) * m;
   out.reinit(n * m, n * m, lengths);
   std::vector<types::global_dof_index> cols;
   for (types::global_dof_index i = 0; i < n; ++i)
@@ -22,10 +23,10 @@ void make_kron_sparsity(const SparsityPattern &spatial, unsigned int m, Sparsity
     cols.clear();
     for (auto it = spatial.begin(i); it != spatial.end(i); ++it)
       for (unsigned int l = 0; l < m; ++l)
-        cols.push_back(it->column() * m + l);
+        cols.push_back(slab.index(it->column(), l));
     std::sort(cols.begin(), cols.end());
     for (unsigned int k = 0; k < m; ++k)
-      out.add_entries(i * m + k, cols.begin(), cols.end(), true);
+      out.add_entries(slab.index(i, k), cols.begin(), cols.end(), true);
   }
   out.compress();
 }
@@ -40,6 +41,7 @@ void assemble_kron(const std::vector<KronTerm> &terms, const SparsityPattern &pa
     if (&t.S->get_sparsity_pattern() != &spatial)
       throw std::logic_error("assemble_kron: spatial matrices must share one pattern");
   const unsigned int m = terms[0].T.m();
+  const SlabLayout slab{m};
   K.reinit(pattern);
   const auto n = spatial.n_rows();
   std::vector<types::global_dof_index> scols, kcols, order;
@@ -69,13 +71,13 @@ void assemble_kron(const std::vector<KronTerm> &terms, const SparsityPattern &pa
       for (const auto p : order)
         for (unsigned int l = 0; l < m; ++l, ++c)
         {
-          kcols[c] = scols[p] * m + l;
+          kcols[c] = slab.index(scols[p], l);
           double v = 0.;
           for (unsigned int t = 0; t < terms.size(); ++t)
             v += terms[t].T(k, l) * svals[t * len + p];
           kvals[c] = v;
         }
-      K.add(i * m + k, c, kcols.data(), kvals.data(), false, true);
+      K.add(slab.index(i, k), c, kcols.data(), kvals.data(), false, true);
     }
   }
 }
@@ -85,6 +87,7 @@ void vmult_kron(const std::vector<KronTerm> &terms, const Vector<double> &src,
 {
   const unsigned int m = terms.at(0).T.m();
   const auto n = terms[0].S->m();
+  const SlabLayout slab{m};
   dst.reinit(n * m);
   Vector<double> x(n), y(n), u(n);
   std::vector<Vector<double>> Sy(m, Vector<double>(n));
@@ -108,45 +111,8 @@ void vmult_kron(const std::vector<KronTerm> &terms, const Vector<double> &src,
           u.add(c, Sy[l]);
       }
       for (types::global_dof_index i = 0; i < n; ++i)
-        dst(i * m + k) += u(i);
+        dst(slab.index(i, k)) += u(i);
     }
-  }
-}
-
-void extract_block(const Vector<double> &U, unsigned int k, unsigned int m, Vector<double> &u)
-{
-  const auto n = U.size() / m;
-  u.reinit(n);
-  for (types::global_dof_index i = 0; i < n; ++i)
-    u(i) = U(i * m + k);
-}
-
-void insert_block(const Vector<double> &u, unsigned int k, unsigned int m, Vector<double> &U)
-{
-  for (types::global_dof_index i = 0; i < u.size(); ++i)
-    U(i * m + k) = u(i);
-}
-
-void add_kron_vector(double factor, const std::vector<double> &a, const Vector<double> &c,
-                     Vector<double> &U)
-{
-  const unsigned int m = a.size();
-  for (types::global_dof_index i = 0; i < c.size(); ++i)
-    for (unsigned int k = 0; k < m; ++k)
-      U(i * m + k) += factor * a[k] * c(i);
-}
-
-void combine_blocks(const Vector<double> &U, const std::vector<double> &c, Vector<double> &u)
-{
-  const unsigned int m = c.size();
-  const auto n = U.size() / m;
-  u.reinit(n);
-  for (types::global_dof_index i = 0; i < n; ++i)
-  {
-    double v = 0.;
-    for (unsigned int k = 0; k < m; ++k)
-      v += c[k] * U(i * m + k);
-    u(i) = v;
   }
 }
 } // namespace anisodwr

@@ -1,0 +1,208 @@
+// The functionals of the estimator on one cell and one slab: the primal residual rho(u)
+// (cell residual, face fluxes, temporal jump), the SUPG form S(u), the adjoint form
+// A(.)(z) and S'(., z), and J'.
+#include "adaptivity/cell_kernel.h"
+
+#include "time/slab_vector.h"
+
+namespace anisodwr
+{
+using namespace dealii;
+
+template <int dim>
+void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<double> &Un,
+                                         const Vector<double> *Uprev, SlabFunctional &rho,
+                                         SlabFunctional &supg) const
+{
+  const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell();
+  const unsigned int nq = quad.size();
+  rho.reset(g.size(), nw);
+  supg.reset(g.size(), nw);
+  const double eps = scene.epsilon, delta = primal.bounded_delta(delta_h, tau);
+  Vector<double> &c = scratch[0], &ct = scratch[1];
+  c.reinit(np, true);
+  ct.reinit(np, true);
+  for (unsigned int m = 0; m < g.size(); ++m)
+  {
+    const double t = t0 + g[m] * tau, wt = tau * omega[m];
+    combine(Un, idx, ell[m], 1., c);
+    combine(Un, idx, dell[m], 1. / tau, ct);
+    for (unsigned int q = 0; q < nq; ++q)
+    {
+      const Point<dim> &x = fv_p.quadrature_point(q);
+      double uh = 0, ut = 0, lap = 0;
+      Tensor<1, dim> grad;
+      for (unsigned int l = 0; l < np; ++l)
+      {
+        uh += c(l) * fv_p.shape_value(l, q);
+        ut += ct(l) * fv_p.shape_value(l, q);
+        grad += c(l) * fv_p.shape_grad(l, q);
+        lap += c(l) * trace(fv_p.shape_hessian(l, q));
+      }
+      const Tensor<1, dim> b = scene.convection(x, t);
+      const double R =
+          scene.rhs(x, t) + eps * lap - ut - b * grad - scene.reaction(x, t) * uh;
+      const double jx = fv_p.JxW(q) * wt;
+      for (unsigned int l = 0; l < nw; ++l)
+      {
+        rho.val[m](l) += jx * R * fv_w.shape_value(l, q);
+        supg.val[m](l) -= jx * delta * R * (b * fv_w.shape_grad(l, q));
+      }
+    }
+    add_face_terms(m, t, wt, Un, c, rho);
+  }
+  add_temporal_jump(t0, delta, Un, Uprev, rho, supg);
+}
+
+template <int dim>
+void CellKernel<dim>::add_face_terms(unsigned int m, double t, double wt,
+                                     const Vector<double> &Un, const Vector<double> &c,
+                                     SlabFunctional &rho) const
+{
+  const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell();
+  const double eps = scene.epsilon;
+  Vector<double> &cn = scratch[2];
+  // faces: half flux jump (interior), Neumann mismatch, -eps d_n u (Dirichlet)
+  for (const auto &pc : pieces)
+  {
+    if (pc.kind == 0)
+    {
+      cn.reinit(np, true);
+      combine(Un, pc.nb_dofs, ell[m], 1., cn);
+    }
+    for (unsigned int q = 0; q < pc.JxW.size(); ++q)
+    {
+      double gk = 0, gn = 0;
+      for (unsigned int l = 0; l < np; ++l)
+        gk += c(l) * pc.gradn(l, q);
+      double flux;
+      if (pc.kind == 0)
+      {
+        for (unsigned int l = 0; l < np; ++l)
+          gn += cn(l) * pc.nb_gradn(l, q);
+        flux = -0.5 * eps * (gk - gn);
+      }
+      else if (pc.kind == 1)
+        flux = scene.neumann_value(pc.x[q], pc.normal[q], t) - eps * gk;
+      else
+        flux = -eps * gk;
+      for (unsigned int l = 0; l < nw; ++l)
+        rho.val[m](l) += wt * flux * pc.JxW[q] * pc.w(l, q);
+    }
+  }
+}
+
+template <int dim>
+void CellKernel<dim>::add_temporal_jump(double t0, double delta, const Vector<double> &Un,
+                                        const Vector<double> *Uprev, SlabFunctional &rho,
+                                        SlabFunctional &supg) const
+{
+  const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell();
+  const unsigned int m1 = basis.n_dofs(), nq = quad.size();
+  // temporal jump at t_{n-1}: u^+ - u^-
+  Vector<double> &cp = scratch[0], &cm = scratch[1];
+  cp.reinit(np, true);
+  cm.reinit(np);
+  combine(Un, idx, basis.left_trace(), 1., cp);
+  if (Uprev)
+    for (unsigned int l = 0; l < np; ++l)
+      cm(l) = (*Uprev)(SlabLayout{m1}.last(idx[l]));
+  for (unsigned int q = 0; q < nq; ++q)
+  {
+    const Point<dim> &x = fv_p.quadrature_point(q);
+    double jump = Uprev ? 0. : -scene.initial_value(x);
+    for (unsigned int l = 0; l < np; ++l)
+      jump += (cp(l) - cm(l)) * fv_p.shape_value(l, q);
+    const Tensor<1, dim> b = scene.convection(x, t0);
+    for (unsigned int l = 0; l < nw; ++l)
+    {
+      rho.jump(l) -= fv_p.JxW(q) * jump * fv_w.shape_value(l, q);
+      supg.jump(l) += fv_p.JxW(q) * delta * jump * (b * fv_w.shape_grad(l, q));
+    }
+  }
+}
+
+template <int dim>
+void CellKernel<dim>::adjoint_functional(double t0, double tau, const SlabFunction &zt,
+                                         bool supg, SlabFunctional &A) const
+{
+  const unsigned int nw = fe_w.n_dofs_per_cell(), nq = quad.size();
+  A.reset(g.size(), nw);
+  if (constant_coefficients)
+  {
+    // the same functional through the cell matrices: val = wt K z, dt = wt M z
+    // (S' matrices per unit delta_K)
+    const auto &Kc = supg ? adj_matrices[2] : adj_matrices[0],
+               &Mc = supg ? adj_matrices[3] : adj_matrices[1];
+    const double scale = supg ? primal.bounded_delta(delta_h, tau) : 1.;
+    for (unsigned int m = 0; m < g.size(); ++m)
+    {
+      const double wt = tau * omega[m] * scale;
+      Kc.vmult(A.val[m], zt.val[m]);
+      A.val[m] *= wt;
+      Mc.vmult(A.dt[m], zt.val[m]);
+      A.dt[m] *= wt;
+    }
+    Mc.vmult(A.jump, zt.plus);
+    A.jump *= scale;
+    return;
+  }
+  const double eps = scene.epsilon, delta = primal.bounded_delta(delta_h, tau);
+  for (unsigned int m = 0; m <= g.size(); ++m) // m == g.size(): the jump at t_{n-1}^+
+  {
+    const bool jump = m == g.size();
+    const double t = jump ? t0 : t0 + g[m] * tau, wt = jump ? 1. : tau * omega[m];
+    const Vector<double> &z = jump ? zt.plus : zt.val[m];
+    for (unsigned int q = 0; q < nq; ++q)
+    {
+      const Point<dim> &x = fv_p.quadrature_point(q);
+      double zq = 0;
+      Tensor<1, dim> gz;
+      for (unsigned int l = 0; l < nw; ++l)
+      {
+        zq += z(l) * fv_w.shape_value(l, q);
+        gz += z(l) * fv_w.shape_grad(l, q);
+      }
+      const Tensor<1, dim> b = scene.convection(x, t);
+      const double alpha = scene.reaction(x, t), jx = wt * fv_p.JxW(q);
+      // the test side: zq (A) or delta b.grad y (S')
+      const double test = supg ? delta * (b * gz) : zq;
+      for (unsigned int l = 0; l < nw; ++l)
+      {
+        const double phi = fv_w.shape_value(l, q);
+        if (jump)
+        {
+          A.jump(l) += jx * phi * test;
+          continue;
+        }
+        const Tensor<1, dim> &gphi = fv_w.shape_grad(l, q);
+        A.dt[m](l) += jx * phi * test;
+        if (supg)
+          A.val[m](l) +=
+              jx * (-eps * trace(fv_w.shape_hessian(l, q)) + b * gphi + alpha * phi) *
+              test;
+        else
+          A.val[m](l) += jx * (eps * (gphi * gz) + (b * gphi + alpha * phi) * zq);
+      }
+    }
+  }
+}
+
+template <int dim>
+void CellKernel<dim>::goal_functional(double tau, const Vector<double> &jt,
+                                      SlabFunctional &J) const
+{
+  J.reset(g.size(), fe_w.n_dofs_per_cell());
+  if (jt.size())
+    for (unsigned int m = 0; m < g.size(); ++m)
+      J.val[m].add(tau * omega[m], jt);
+}
+
+template void CellKernel<2>::primal_functionals(double, double, const Vector<double> &,
+                                                const Vector<double> *, SlabFunctional &,
+                                                SlabFunctional &) const;
+template void CellKernel<2>::adjoint_functional(double, double, const SlabFunction &,
+                                                bool, SlabFunctional &) const;
+template void CellKernel<2>::goal_functional(double, const Vector<double> &,
+                                             SlabFunctional &) const;
+} // namespace anisodwr

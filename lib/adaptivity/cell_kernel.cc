@@ -1,0 +1,170 @@
+// CellKernel: the cell, its face pieces and neighbours (hanging nodes on either side),
+// and the gathering of cell coefficients from interleaved slab vectors.
+#include "adaptivity/cell_kernel.h"
+
+#include "time/slab_vector.h"
+
+namespace anisodwr
+{
+using namespace dealii;
+
+template <int dim>
+CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
+                            const TemporalBasis &basis)
+    : primal(primal), scene(primal.scene), fe_p(primal.finite_element()), fe_w(fe_w),
+      basis(basis), quad(fe_w.degree + 2), fquad(fe_w.degree + 2),
+      fv_p(primal.mapping(), fe_p, quad,
+           update_values | update_gradients | update_hessians | update_quadrature_points |
+               update_JxW_values),
+      fv_w(primal.mapping(), fe_w, quad,
+           update_values | update_gradients | update_hessians),
+      ff_p(primal.mapping(), fe_p, fquad,
+           update_gradients | update_normal_vectors | update_quadrature_points |
+               update_JxW_values),
+      ff_w(primal.mapping(), fe_w, fquad, update_values),
+      fs_p(primal.mapping(), fe_p, fquad,
+           update_gradients | update_normal_vectors | update_quadrature_points |
+               update_JxW_values),
+      fs_w(primal.mapping(), fe_w, fquad, update_values),
+      fn_p(primal.mapping(), fe_p, fquad, update_gradients | update_quadrature_points),
+      fns_p(primal.mapping(), fe_p, fquad, update_gradients | update_quadrature_points),
+      constant_coefficients(!scene.coefficients_depend_on_time())
+{
+  gauss_rule(basis.n_dofs() + 1, g, omega);
+  for (double s : g)
+  {
+    ell.push_back(basis.values(s));
+    std::vector<double> d(basis.n_dofs());
+    for (unsigned int k = 0; k < basis.n_dofs(); ++k)
+      d[k] = basis.derivative(k, s);
+    dell.push_back(d);
+  }
+}
+
+template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
+{
+  K = cell;
+  fv_p.reinit(cell);
+  fv_w.reinit(typename Triangulation<dim>::cell_iterator(cell));
+  delta_h = primal.unbounded_delta(cell);
+  if (constant_coefficients)
+    build_adjoint_matrices();
+  idx.resize(fe_p.n_dofs_per_cell());
+  cell->get_dof_indices(idx);
+  pieces.clear();
+  for (unsigned int f = 0; f < GeometryInfo<dim>::faces_per_cell; ++f)
+  {
+    if (cell->at_boundary(f))
+    {
+      ff_p.reinit(cell, f);
+      ff_w.reinit(typename Triangulation<dim>::cell_iterator(cell), f);
+      const auto id = cell->face(f)->boundary_id();
+      add_piece(ff_p, ff_w, nullptr, {}, scene.neumann_ids.count(id) ? 1 : 2);
+    }
+    else if (cell->face(f)->has_children())
+    {
+      const unsigned int nn = cell->neighbor_of_neighbor(f);
+      for (unsigned int sf = 0; sf < cell->face(f)->n_children(); ++sf)
+      {
+        const auto nb = cell->neighbor_child_on_subface(f, sf);
+        fs_p.reinit(cell, f, sf);
+        fs_w.reinit(typename Triangulation<dim>::cell_iterator(cell), f, sf);
+        fn_p.reinit(nb, nn);
+        add_piece(fs_p, fs_w, &fn_p, dofs_of(nb), 0);
+      }
+    }
+    else if (cell->neighbor_is_coarser(f))
+    {
+      const auto nb = cell->neighbor(f);
+      const auto [nf, nsf] = cell->neighbor_of_coarser_neighbor(f);
+      ff_p.reinit(cell, f);
+      ff_w.reinit(typename Triangulation<dim>::cell_iterator(cell), f);
+      fns_p.reinit(nb, nf, nsf);
+      add_piece(ff_p, ff_w, &fns_p, dofs_of(nb), 0);
+    }
+    else
+    {
+      const auto nb = cell->neighbor(f);
+      ff_p.reinit(cell, f);
+      ff_w.reinit(typename Triangulation<dim>::cell_iterator(cell), f);
+      fn_p.reinit(nb, cell->neighbor_of_neighbor(f));
+      add_piece(ff_p, ff_w, &fn_p, dofs_of(nb), 0);
+    }
+  }
+}
+
+template <int dim>
+std::vector<types::global_dof_index>
+CellKernel<dim>::dofs_of(const typename DoFHandler<dim>::cell_iterator &c)
+{
+  std::vector<types::global_dof_index> d(fe_p.n_dofs_per_cell());
+  c->get_dof_indices(d);
+  return d;
+}
+
+template <int dim>
+void CellKernel<dim>::add_piece(const FEFaceValuesBase<dim> &fp,
+                                const FEFaceValuesBase<dim> &fw,
+                                const FEFaceValuesBase<dim> *fn,
+                                std::vector<types::global_dof_index> nb, int kind)
+{
+  const unsigned int nq = fp.n_quadrature_points, np = fe_p.n_dofs_per_cell(),
+                     nw = fe_w.n_dofs_per_cell();
+  Piece pc;
+  pc.kind = kind;
+  pc.nb_dofs = std::move(nb);
+  pc.w.reinit(nw, nq);
+  pc.gradn.reinit(np, nq);
+  if (fn)
+    pc.nb_gradn.reinit(np, nq);
+  for (unsigned int q = 0; q < nq; ++q)
+  {
+    pc.JxW.push_back(fp.JxW(q));
+    pc.x.push_back(fp.quadrature_point(q));
+    pc.normal.push_back(fp.normal_vector(q));
+    for (unsigned int l = 0; l < nw; ++l)
+      pc.w(l, q) = fw.shape_value(l, q);
+    for (unsigned int l = 0; l < np; ++l)
+      pc.gradn(l, q) = fp.shape_grad(l, q) * fp.normal_vector(q);
+    if (fn) // match the neighbour's quadrature point to ours
+    {
+      unsigned int qn = 0;
+      double best = 1e300;
+      for (unsigned int k = 0; k < nq; ++k)
+        if (const double d = fn->quadrature_point(k).distance(fp.quadrature_point(q));
+            d < best)
+        {
+          best = d;
+          qn = k;
+        }
+      for (unsigned int l = 0; l < np; ++l)
+        pc.nb_gradn(l, q) = fn->shape_grad(l, qn) * fp.normal_vector(q);
+    }
+  }
+  pieces.push_back(std::move(pc));
+}
+
+template <int dim>
+void CellKernel<dim>::combine(const Vector<double> &U,
+                              const std::vector<types::global_dof_index> &dofs,
+                              const std::vector<double> &a, double scale,
+                              Vector<double> &c) const
+{
+  const SlabLayout slab{basis.n_dofs()};
+  for (unsigned int l = 0; l < dofs.size(); ++l)
+  {
+    double s = 0;
+    for (unsigned int k = 0; k < slab.m; ++k)
+      s += a[k] * U(slab.index(dofs[l], k));
+    c(l) = scale * s;
+  }
+}
+
+template CellKernel<2>::CellKernel(const Space<2> &, const FE_Q<2> &,
+                                   const TemporalBasis &);
+template void CellKernel<2>::reinit(const cell_iterator &);
+template void CellKernel<2>::combine(const Vector<double> &,
+                                     const std::vector<types::global_dof_index> &,
+                                     const std::vector<double> &, double,
+                                     Vector<double> &) const;
+} // namespace anisodwr

@@ -1,0 +1,170 @@
+#pragma once
+// The cell integrals of the DWR estimator (SPEC §5) on one cell and one slab, as linear
+// functionals on W-local coefficients (internal to lib/adaptivity/; see estimator.h).
+//   cell_kernel.cc               the cell, its faces and neighbours (hanging nodes)
+//   cell_functionals.cc          rho(u), S(u), A(.)(z), S'(., z) and J' on the cell
+//   adjoint_cell_matrices.cc     A and S' as cell matrices (coefficients constant in t)
+//   slab_functions.cc            slab functions in W-local coefficients
+#include "space/space.h"
+#include "time/temporal_basis.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <array>
+#include <vector>
+
+namespace anisodwr
+{
+/// Linear functionals on W-local coefficients at the r+2 temporal Gauss points of a
+/// slab and at t_{n-1}^+:
+///   value(v) = sum_m (val[m] . v(g_m) + dt[m] . d_t v(g_m)) + jump . w(t_{n-1}^+)
+/// (for rho and S the "jump" slot multiplies the weight at t_{n-1}^+; for A and S' it
+/// multiplies the jump v^+ - v^- of the primal-slot function).
+struct SlabFunctional
+{
+  std::vector<dealii::Vector<double>> val, dt;
+  dealii::Vector<double> jump;
+  /// Zeroes the functional; reallocates only when the sizes change.
+  void reset(unsigned int n_points, unsigned int n);
+};
+
+/// A function of time on one slab in W-local coefficients: values and time
+/// derivatives at the Gauss points, the value at t_{n-1}^+ and (for jumps) at t_{n-1}^-.
+struct SlabFunction
+{
+  std::vector<dealii::Vector<double>> val, dt;
+  dealii::Vector<double> plus, minus;
+};
+
+/// F(v); with jump_of_v the jump slot takes v^+ - v^- (v.minus, where given).
+double apply(const SlabFunctional &F, const SlabFunction &v, bool jump_of_v);
+
+/// The cell integrals of SPEC §5 on one cell and one slab.
+template <int dim> class CellKernel
+{
+public:
+  using cell_iterator = typename dealii::DoFHandler<dim>::active_cell_iterator;
+
+  CellKernel(const Space<dim> &primal, const dealii::FE_Q<dim> &fe_w,
+             const TemporalBasis &basis);
+
+  unsigned int n_points() const { return g.size(); }
+  double point(unsigned int m) const { return g[m]; }
+  const std::vector<double> &values_at(unsigned int m) const { return ell[m]; }
+  const std::vector<double> &derivatives_at(unsigned int m) const { return dell[m]; }
+
+  /// The cell, its face pieces (boundary, same-level, finer and coarser neighbours) and,
+  /// for coefficients constant in time, its adjoint cell matrices.
+  void reinit(const cell_iterator &cell);
+
+  const std::vector<dealii::types::global_dof_index> &dof_indices() const { return idx; }
+
+  /// rho(u)(.) and S(u)(.) on slab (t0, t0+tau] for u = U_n (interleaved), with
+  /// u(t_{n-1}^-) from U_prev's last node or, if null, from u_0.
+  void primal_functionals(double t0, double tau, const dealii::Vector<double> &Un,
+                          const dealii::Vector<double> *Uprev, SlabFunctional &rho,
+                          SlabFunctional &supg) const;
+
+  /// A(.)(zt) (supg == false) or S'(., y = zt) (supg == true) on the slab, for zt given
+  /// in W-local coefficients at the Gauss points (val) and at t_{n-1}^+ (plus).
+  void adjoint_functional(double t0, double tau, const SlabFunction &zt, bool supg,
+                          SlabFunctional &A) const;
+
+  /// J'(v) on this cell: the part over I at the Gauss points, the end part at T.
+  void goal_functional(double tau, const dealii::Vector<double> &jt,
+                       SlabFunctional &J) const;
+
+private:
+  struct Piece
+  {
+    int kind; // 0 interior, 1 Neumann, 2 Dirichlet
+    std::vector<double> JxW;
+    dealii::FullMatrix<double> w, gradn, nb_gradn;
+    std::vector<dealii::Point<dim>> x;
+    std::vector<dealii::Tensor<1, dim>> normal;
+    std::vector<dealii::types::global_dof_index> nb_dofs;
+  };
+
+  std::vector<dealii::types::global_dof_index>
+  dofs_of(const typename dealii::DoFHandler<dim>::cell_iterator &c);
+
+  void add_piece(const dealii::FEFaceValuesBase<dim> &fp,
+                 const dealii::FEFaceValuesBase<dim> &fw,
+                 const dealii::FEFaceValuesBase<dim> *fn,
+                 std::vector<dealii::types::global_dof_index> nb, int kind);
+
+  /// c_l = scale * sum_k a_k U(dofs_l (r+1) + k)
+  void combine(const dealii::Vector<double> &U,
+               const std::vector<dealii::types::global_dof_index> &dofs,
+               const std::vector<double> &a, double scale,
+               dealii::Vector<double> &c) const;
+
+  /// rho += the face terms at Gauss point m (time t, weight wt) for u's coefficients c:
+  /// half the flux jump (interior), the Neumann mismatch, -eps d_n u (Dirichlet).
+  void add_face_terms(unsigned int m, double t, double wt,
+                      const dealii::Vector<double> &Un, const dealii::Vector<double> &c,
+                      SlabFunctional &rho) const;
+
+  /// rho and S += the temporal jump terms of u^+ - u^- at t0.
+  void add_temporal_jump(double t0, double delta, const dealii::Vector<double> &Un,
+                         const dealii::Vector<double> *Uprev, SlabFunctional &rho,
+                         SlabFunctional &supg) const;
+
+  const Space<dim> &primal;
+  const Scene<dim> &scene;
+  const dealii::FiniteElement<dim> &fe_p;
+  const dealii::FE_Q<dim> &fe_w;
+  const TemporalBasis &basis;
+  dealii::QGauss<dim> quad;
+  dealii::QGauss<dim - 1> fquad;
+  dealii::FEValues<dim> fv_p, fv_w;
+  dealii::FEFaceValues<dim> ff_p, ff_w;
+  dealii::FESubfaceValues<dim> fs_p, fs_w;
+  dealii::FEFaceValues<dim> fn_p;
+  dealii::FESubfaceValues<dim> fns_p;
+  std::vector<double> g, omega;
+  std::vector<std::vector<double>> ell, dell;
+  cell_iterator K;
+  double delta_h = 0; // delta_K before the bound by tau_n
+  std::vector<dealii::types::global_dof_index> idx;
+  std::vector<Piece> pieces;
+  mutable std::array<dealii::Vector<double>, 3> scratch; // cell-local coefficient buffers
+
+  /// For coefficients constant in time, A(.)(z) and S'(., z) are cell matrices applied
+  /// to z (per unit temporal weight): [0] A's val part, [1] A's dt/jump part, [2] S'
+  /// val part, [3] S' dt/jump part (rows: the first slot, columns: z).
+  const bool constant_coefficients;
+  std::array<dealii::FullMatrix<double>, 4> adj_matrices;
+  void build_adjoint_matrices();
+};
+
+/// W-local coefficients of temporal node k of an interleaved slab vector.
+void gather(const dealii::Vector<double> &U,
+            const std::vector<dealii::types::global_dof_index> &dofs, unsigned int m1,
+            unsigned int k, const dealii::FullMatrix<double> &to_w,
+            dealii::Vector<double> &out);
+
+/// f = the slab function sum_k l_k(s) V_k from W-local nodal vectors V_k (f.minus is
+/// left as it is; f's vectors are reused).
+template <int dim>
+void slab_function(const CellKernel<dim> &kernel, const TemporalBasis &basis, double tau,
+                   const std::vector<dealii::Vector<double>> &V, SlabFunction &f);
+
+/// f = R f (each vector of f that is set).
+void transform(const dealii::FullMatrix<double> &R, SlabFunction &f);
+
+/// d = a - b (d's vectors are reused).
+void difference(const SlabFunction &a, const SlabFunction &b, SlabFunction &d);
+
+/// The degree of the weight element W = FE_Q(max(q, 2p)).
+template <int dim>
+unsigned int weight_degree(const Space<dim> &primal, const Space<dim> &other)
+{
+  return std::max(other.degree(), 2 * primal.degree());
+}
+} // namespace anisodwr

@@ -1,0 +1,55 @@
+#include "adaptivity/lifted_goal.h"
+
+#include "adaptivity/spatial_operators.h"
+#include "goal/goal.h"
+
+namespace anisodwr
+{
+using namespace dealii;
+
+double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh &mesh,
+                   const TemporalBasis &basis, const std::vector<Vector<double>> &U)
+{
+  const SpatialOperators<2> ops(primal.dof_handler(), 2 * primal.degree());
+  const GoalSpec g = unweighted(goal);
+  const LocalGoal<2> local(primal.mapping(), ops.weight_element(),
+                           primal.dof_handler().get_triangulation(), {g}, g.over_time);
+  const FullMatrix<double> P = ops.interpolation_from(primal.finite_element());
+  const unsigned int m1 = basis.n_dofs(), N = mesh.n_slabs();
+  std::vector<double> gp, gw;
+  gauss_rule(m1 + 1, gp, gw);
+  std::vector<types::global_dof_index> idx(primal.finite_element().n_dofs_per_cell());
+  double J = 0;
+  Vector<double> j, v;
+  for (const auto &cell : primal.dof_handler().active_cell_iterators())
+  {
+    if (!local.cell_vector(cell, j))
+      continue;
+    LocalMap lift = ops.patch_lift(cell);
+    if (!lift.exists) // no patch: the lift is u itself
+    {
+      cell->get_dof_indices(idx);
+      lift.exists = true;
+      lift.dofs = idx;
+      lift.matrix = P;
+    }
+    auto node_value = [&](unsigned int n, unsigned int k)
+    {
+      lift.apply(U[n], v, m1, k);
+      return j * v;
+    };
+    if (!g.over_time)
+      J += node_value(N - 1, m1 - 1);
+    else
+      for (unsigned int n = 0; n < N; ++n)
+        for (unsigned int k = 0; k < m1; ++k)
+        {
+          double w = 0;
+          for (unsigned int m = 0; m < gp.size(); ++m)
+            w += gw[m] * basis.value(k, gp[m]);
+          J += mesh.tau(n) * w * node_value(n, k);
+        }
+  }
+  return J;
+}
+} // namespace anisodwr

@@ -1,0 +1,125 @@
+#include "goal/goal_input.h"
+
+#include "config/errors.h"
+#include "io/table.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+namespace
+{
+std::vector<std::string> split(const std::string &s, char sep)
+{
+  std::vector<std::string> out;
+  std::string item;
+  std::istringstream in(s);
+  while (std::getline(in, item, sep))
+  {
+    const auto a = item.find_first_not_of(" \t"), b = item.find_last_not_of(" \t");
+    out.push_back(a == std::string::npos ? "" : item.substr(a, b - a + 1));
+  }
+  return out;
+}
+
+std::vector<double> numbers(const std::string &s, const std::string &key, unsigned int n,
+                            const std::string &source)
+{
+  std::vector<double> v;
+  for (const auto &x : split(s, ','))
+    try
+    {
+      std::size_t used = 0;
+      v.push_back(std::stod(x, &used));
+      if (used != x.size() || !std::isfinite(v.back()))
+        throw std::invalid_argument(x);
+    }
+    catch (const std::exception &)
+    {
+      throw InputError(source + ": invalid value '" + s + "' in key '" + key +
+                       "'; expected " + std::to_string(n) +
+                       " comma-separated finite numbers");
+    }
+  if (v.size() != n)
+    throw InputError(source + ": invalid value '" + s + "' in key '" + key +
+                     "'; expected " + std::to_string(n) +
+                     " comma-separated numbers, got " + std::to_string(v.size()));
+  return v;
+}
+} // namespace
+
+std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
+{
+  const std::string where = in.locations_source;
+  std::vector<GoalSpec> goals;
+  if (in.kind == "scene")
+    goals = scene.default_goals(in.radius);
+  else
+  {
+    const auto items = split(in.locations, ';');
+    if (in.locations.empty() || items.empty())
+      throw InputError(where + ": key 'goal.locations' is empty; goal.kind = " + in.kind +
+                       " needs at least one location");
+    for (std::size_t i = 0; i < items.size(); ++i)
+    {
+      GoalSpec g;
+      g.kind = in.kind;
+      g.over_time = in.over_time;
+      g.name = in.kind + "_" + std::to_string(i + 1);
+      if (g.kind == "point")
+      {
+        g.center = numbers(items[i], "goal.locations", 2, where);
+        g.radius = in.radius;
+        if (!scene.contains(Point<2>(g.center[0], g.center[1])))
+          throw InputError(where + ": invalid point '" + items[i] +
+                           "' in key 'goal.locations'; it lies outside the domain " +
+                           scene.domain_text() + " of scene '" + scene.name() + "'");
+      }
+      else
+      {
+        const auto v = numbers(items[i], "goal.locations", 4, where);
+        g.lower = {v[0], v[1]};
+        g.upper = {v[2], v[3]};
+        if (!(v[2] > v[0] && v[3] > v[1]))
+          throw InputError(
+              where + ": invalid rectangle '" + items[i] +
+              "' in key 'goal.locations'; expected x0,y0,x1,y1 with x1 > x0, "
+              "y1 > y0");
+        if (!scene.contains_box(Point<2>(v[0], v[1]), Point<2>(v[2], v[3])))
+          throw InputError(where + ": invalid rectangle '" + items[i] +
+                           "' in key 'goal.locations'; it is not inside the domain " +
+                           scene.domain_text() + " of scene '" + scene.name() + "'");
+      }
+      goals.push_back(g);
+    }
+  }
+  // a mollifier wider than the domain is no point goal (and makes J a domain mean)
+  const auto box = scene.bounding_box();
+  const double diameter = box[0].distance(box[1]);
+  for (const auto &g : goals)
+    if (g.kind == "point" && !(g.radius <= diameter))
+      throw InputError(in.radius_source + ": invalid value '" + json_number(g.radius, 6) +
+                       "' for key 'goal.radius'; expected a number >= 0 and at most the "
+                       "diameter " +
+                       json_number(diameter, 6) + " of the domain " +
+                       scene.domain_text() + " of scene '" + scene.name() + "'");
+  if (in.weights != "auto")
+  {
+    const auto w = split(in.weights, ',');
+    if (w.size() != 1 && w.size() != goals.size())
+      throw InputError(in.weights_source + ": invalid value '" + in.weights +
+                       "' for key 'goal.weights'; "
+                       "expected auto, one number or " +
+                       std::to_string(goals.size()) +
+                       " comma-separated numbers (one per goal)");
+    const auto v = numbers(in.weights, "goal.weights", w.size(), in.weights_source);
+    for (std::size_t g = 0; g < goals.size(); ++g)
+      goals[g].weight = v[w.size() == 1 ? 0 : g];
+  }
+  return goals;
+}
+} // namespace anisodwr

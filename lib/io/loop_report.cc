@@ -1,0 +1,184 @@
+#include "io/loop_report.h"
+
+#include "io/table.h"
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace anisodwr
+{
+namespace
+{
+std::string num(double v)
+{
+  return json_number(v, 12);
+}
+
+const std::vector<std::string> columns{
+    "loop",   "N_space",  "N_t",       "N_tot",      "J",        "J_error",
+    "eta_hx", "eta_hy",   "eta_h",     "eta_tau",    "eta_tauh", "I_eff",
+    "ar_max", "t_primal", "t_adjoint", "t_estimate", "t_refine", "mem_peak"};
+} // namespace
+
+std::vector<double> LoopRow::values() const
+{
+  return {double(loop),
+          n_space,
+          double(n_t),
+          n_tot,
+          J,
+          J_error(),
+          eta_h[0],
+          eta_h[1],
+          eta_h_total,
+          eta_tau,
+          eta_h_total + eta_tau,
+          I_eff(),
+          ar,
+          t_primal,
+          t_adjoint,
+          t_estimate,
+          t_refine,
+          mem};
+}
+
+std::vector<double> LoopRow::all_values() const
+{
+  auto v = values();
+  for (std::size_t g = 0; g < J_goal.size(); ++g)
+    v.push_back(J_goal_exact[g] - J_goal[g]);
+  for (std::size_t g = 0; g < J_goal.size(); ++g)
+    v.push_back(g < eta_goal.size() ? eta_goal[g] : nan);
+  for (std::size_t g = 0; g < J_goal.size(); ++g)
+    v.push_back(g < eta_goal.size()
+                    ? std::abs(eta_goal[g] / (J_goal_exact[g] - J_goal[g]))
+                    : nan);
+  v.insert(v.end(), {eta_tau_rho, eta_tau_rhostar, err_tau, err_tau_order,
+                     double(marking[0]), double(marking[1]), double(marking[2]),
+                     double(marking[3]), double(marking[4]), mem_estimate, eta_h_rho,
+                     eta_h_rhostar, eta_h_supg, no_lift});
+  return v;
+}
+
+/// Columns after `columns` in loops.csv: the signed error J_i(u) - J_i(u_tau h) of each
+/// goal (unweighted; empty without an exact solution), each goal's own eta_tau h and
+/// I_eff (adaptivity.per_goal_estimates; else empty), the two halves of eta_tau, the
+/// measured temporal error (adaptivity.measure_time_error; else empty), and
+/// the cells of the refinement after the loop: marked, cut in x only, in y only, in
+/// both, and flagged or extended by the closure; the loop's memory estimate; last the
+/// parts of eta_h (1/2 rho(u)(z - R_i z), the adjoint half, S(u)(R_h z), summed over
+/// directions) and the number of (cell, direction) pairs without a lift.
+std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names)
+{
+  auto c = columns;
+  for (const std::string prefix : {"err_", "eta_", "I_eff_"})
+    for (const auto &name : goal_names)
+      c.push_back(prefix + name);
+  c.insert(c.end(),
+           {"eta_tau_rho", "eta_tau_rhostar", "err_tau", "err_tau_order", "marked",
+            "marked_x", "marked_y", "marked_xy", "closure", "memory_estimate_mb",
+            "eta_h_rho", "eta_h_rhostar", "eta_h_supg", "no_lift"});
+  return c;
+}
+
+void write_loops_latex(const std::string &path, const std::vector<LoopRow> &rows)
+{
+  std::ofstream f(path);
+  f << "% written by anisodwr; one row per DWR loop\n"
+    << "\\begin{tabular}{rrrrcccccccr}\n\\hline\n"
+    << "$\\ell$ & $N_{\\mathrm{space}}$ & $N_t$ & $N_{\\mathrm{tot}}$ & "
+    << "$|J(u)-J(u_{\\tau h})|$ & $\\eta_{h,x}$ & $\\eta_{h,y}$ & $\\eta_h$ & "
+       "$\\eta_\\tau$ & "
+    << "$\\eta_{\\tau h}$ & $I_{\\mathrm{eff}}$ & $\\mathrm{ar}_{\\max}$ \\\\\n\\hline\n";
+  auto sci = [](double v)
+  {
+    if (!std::isfinite(v))
+      return std::string("--");
+    std::ostringstream s;
+    s << std::scientific << std::setprecision(2) << v;
+    return "$" + s.str() + "$";
+  };
+  for (const auto &r : rows)
+  {
+    std::ostringstream ie, ar;
+    ie << std::fixed << std::setprecision(2) << r.I_eff();
+    ar << std::fixed << std::setprecision(1) << r.ar;
+    f << r.loop << " & " << std::size_t(r.n_space) << " & " << r.n_t << " & "
+      << std::size_t(r.n_tot) << " & " << sci(r.J_error()) << " & " << sci(r.eta_h[0])
+      << " & " << sci(r.eta_h[1]) << " & " << sci(r.eta_h_total) << " & "
+      << sci(r.eta_tau) << " & " << sci(r.eta_h_total + r.eta_tau) << " & "
+      << (std::isfinite(r.I_eff()) ? ie.str() : "--") << " & " << ar.str() << " \\\\\n";
+  }
+  f << "\\hline\n\\end{tabular}\n";
+}
+
+std::string summary_json(const SummaryContext &context, const std::vector<LoopRow> &rows,
+                         const std::string &status, const std::string &stop_reason,
+                         double wall, const std::string &details)
+{
+  std::ostringstream f;
+  f << "{\n  \"status\": \"" << json_escape(status) << "\",\n  \"stop_reason\": \""
+    << json_escape(stop_reason) << "\",\n";
+  if (!details.empty())
+    f << "  \"details\": \"" << json_escape(details) << "\",\n";
+  const auto &goals = context.goal_names;
+  f << "  \"config\": " << context.config_json << ",\n  \"goals\": [";
+  for (std::size_t g = 0; g < goals.size(); ++g)
+    f << (g ? ", " : "") << "\"" << goals[g] << "\"";
+  f << "],\n  \"loops\": [";
+  const auto names = loop_columns(goals);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+  {
+    const auto &r = rows[i];
+    f << (i ? ",\n    " : "\n    ") << "{";
+    const auto v = r.all_values();
+    for (std::size_t c = 0; c < names.size(); ++c)
+      f << (c ? ", " : "") << "\"" << names[c] << "\": " << num(v[c]);
+    f << ", \"goals\": {";
+    for (std::size_t g = 0; g < goals.size(); ++g)
+      f << (g ? ", " : "") << "\"" << goals[g] << "\": {\"J_h\": " << num(r.J_goal[g])
+        << ", \"J_exact\": " << num(r.J_goal_exact[g])
+        << ", \"weight\": " << num(r.weights[g]) << "}";
+    f << "}, \"probes\": {";
+    for (const auto &[name, value] : r.probes)
+      f << "\"" << name << "\": " << num(value) << ", ";
+    f << "\"u_min\": " << num(r.u_min) << ", \"u_max\": " << num(r.u_max) << "}}";
+  }
+  f << "\n  ],\n  \"wall_time\": " << num(wall)
+    << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << ",\n  "
+    << context.solver_json << "\n}\n";
+  return f.str();
+}
+
+void write_summary(const std::string &path, const SummaryContext &context,
+                   const std::vector<LoopRow> &rows, const std::string &status,
+                   const std::string &stop_reason, double wall,
+                   const std::string &details)
+{
+  write_file_atomically(path,
+                        summary_json(context, rows, status, stop_reason, wall, details));
+  set_interrupt_summary(path, summary_json(context, rows, "interrupted",
+                                           "interrupted (SIGINT/SIGTERM)", wall, ""));
+}
+
+void print_loop_header(std::ostream &out)
+{
+  out << std::setw(4) << "loop" << std::setw(9) << "N_space" << std::setw(6) << "N_t"
+      << std::setw(10) << "N_tot" << std::setw(12) << "J_error" << std::setw(11)
+      << "eta_hx" << std::setw(11) << "eta_hy" << std::setw(11) << "eta_tau"
+      << std::setw(7) << "I_eff" << std::setw(9) << "ar" << std::setw(8) << "t[s]"
+      << std::endl;
+}
+
+void print_loop_row(std::ostream &out, const LoopRow &row)
+{
+  out << std::setw(4) << row.loop << std::setw(9) << std::size_t(row.n_space)
+      << std::setw(6) << row.n_t << std::setw(10) << std::size_t(row.n_tot)
+      << std::setw(12) << std::setprecision(3) << row.J_error() << std::setw(11)
+      << row.eta_h[0] << std::setw(11) << row.eta_h[1] << std::setw(11) << row.eta_tau
+      << std::setw(7) << std::setprecision(3) << row.I_eff() << std::setw(9)
+      << std::setprecision(4) << row.ar << std::setw(8) << std::setprecision(3)
+      << row.t_primal + row.t_adjoint + row.t_estimate + row.t_refine << std::endl;
+}
+} // namespace anisodwr

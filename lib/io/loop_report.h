@@ -1,0 +1,81 @@
+#pragma once
+// The report of the adaptive DWR loop, one row per loop: the tables loops.csv and
+// loops.tex, summary.json and the console table.
+#include <array>
+#include <cmath>
+#include <limits>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace anisodwr
+{
+/// One loop of the adaptive DWR loop: sizes, goal values, estimates, times, memory.
+struct LoopRow
+{
+  static constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+  unsigned int loop = 0, n_t = 0;
+  double n_space = 0, n_tot = 0;
+  double J = 0, J_exact = nan, eta_h_total = 0, eta_tau = 0, ar = 1;
+  std::array<double, 2> eta_h{};
+  std::vector<double> J_goal, J_goal_exact;
+  std::vector<double> weights;
+  double t_primal = 0, t_adjoint = 0, t_estimate = 0, t_refine = 0, mem = 0;
+  double eta_tau_rho = 0, eta_tau_rhostar = 0;
+  /// the parts of eta_h summed over directions (1/2 rho(u)(z - R_i z), the adjoint half,
+  /// S(u)(R_h z)) and the (cell, direction) pairs without a lift
+  double eta_h_rho = 0, eta_h_rhostar = 0, eta_h_supg = 0, no_lift = 0;
+  /// adaptivity.measure_time_error: J_w(u_h) - J_w(u_tau h) on this spatial mesh,
+  /// extrapolated from the time mesh bisected once and twice (NaN when not measured)
+  double err_tau = nan, err_tau_order = nan;
+  /// memory estimate of the loop (MB), made before it started (study/memory_estimate.h)
+  double mem_estimate = nan;
+  /// adaptivity.per_goal_estimates: eta_tau h of each goal from its own adjoint
+  std::vector<double> eta_goal;
+  /// the cells of the refinement that follows this loop (zeros on the last): marked,
+  /// cut in x only, in y only, in both, flagged or extended by the closure
+  std::array<unsigned int, 5> marking{};
+  /// the probes by name (the columns of probes.csv) and the bounds they used
+  std::vector<std::pair<std::string, double>> probes;
+  double u_min = 0, u_max = 0;
+  double J_error() const { return std::abs(J_exact - J); }
+  double I_eff() const { return std::abs((eta_h_total + eta_tau) / (J_exact - J)); }
+  /// The first 18 columns of loop_columns.
+  std::vector<double> values() const;
+  /// values() followed by the columns loop_columns adds for the goals
+  std::vector<double> all_values() const;
+};
+
+/// The columns of loops.csv (and of each loop in summary.json) for the goals named.
+std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names);
+
+/// loops.tex: the main columns of all rows as a LaTeX tabular.
+void write_loops_latex(const std::string &path, const std::vector<LoopRow> &rows);
+
+/// What summary.json says besides the rows: the configuration (JSON), the goal names and
+/// the solver totals (JSON members).
+struct SummaryContext
+{
+  std::string config_json;
+  std::vector<std::string> goal_names;
+  std::string solver_json;
+};
+
+/// The text of summary.json.
+std::string summary_json(const SummaryContext &context, const std::vector<LoopRow> &rows,
+                         const std::string &status, const std::string &stop_reason,
+                         double wall, const std::string &details);
+
+/// Writes summary.json (path) atomically and prepares the one a SIGINT/SIGTERM leaves:
+/// the same rows with status "interrupted".
+void write_summary(const std::string &path, const SummaryContext &context,
+                   const std::vector<LoopRow> &rows, const std::string &status,
+                   const std::string &stop_reason, double wall,
+                   const std::string &details = "");
+
+/// The console table: its header, and one line per loop.
+void print_loop_header(std::ostream &out);
+void print_loop_row(std::ostream &out, const LoopRow &row);
+} // namespace anisodwr

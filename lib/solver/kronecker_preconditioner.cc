@@ -1,0 +1,262 @@
+#include "solver/kronecker_preconditioner.h"
+
+#include "solver/amg_block.h"
+#include "solver/ifpack2_factory.h"
+#include "time/slab_vector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+extern "C" void dgees_(const char *jobvs, const char *sort,
+                       int (*select)(double *, double *), const int *n, double *a,
+                       const int *lda, int *sdim, double *wr, double *wi, double *vs,
+                       const int *ldvs, double *work, const int *lwork, int *bwork,
+                       int *info);
+
+namespace anisodwr::tpetra
+{
+KroneckerPreconditioner::KroneckerPreconditioner(const RCP<const Map> &slab_map,
+                                                 const KronSplit &k, bool transpose,
+                                                 const IterativeOptions &o)
+    : presb(o.preconditioner == "kronecker_presb"), slab_map(slab_map)
+{
+  if (o.spatial_preconditioner != "ilu" && o.spatial_preconditioner != "amg")
+    throw std::invalid_argument("unknown spatial preconditioner '" +
+                                o.spatial_preconditioner + "' (ilu or amg)");
+  if (o.amg_smoother != "ilu" && o.amg_smoother != "gauss_seidel" &&
+      o.amg_smoother != "chebyshev")
+    throw std::invalid_argument("unknown AMG smoother '" + o.amg_smoother +
+                                "' (ilu, gauss_seidel or chebyshev)");
+  schur_form(k, transpose);
+
+  const auto &S1 = *k.S1;
+  const auto &S2 = *k.S2;
+  space_map = serial_map(S1.m());
+  S1_t = to_tpetra(space_map, S1, 1., nullptr, 0., transpose);
+  for (unsigned int j = 0; j < m;)
+  {
+    blocks.push_back(make_block(j, S1, S2, transpose, o));
+    j += blocks.back().size;
+  }
+  for (unsigned int k2 = 0; k2 < m; ++k2)
+  {
+    y.push_back(rcp(new Vec(space_map)));
+    z.push_back(rcp(new Vec(space_map)));
+  }
+  w1 = rcp(new Vec(space_map));
+  w2 = rcp(new Vec(space_map));
+  h = rcp(new Vec(space_map));
+}
+
+void KroneckerPreconditioner::schur_form(const KronSplit &k, bool transpose)
+{
+  m = k.T1.m();
+  const int mi = static_cast<int>(m);
+  dealii::FullMatrix<double> T1(m, m), T2(m, m), T2inv(m, m), G(m, m);
+  for (unsigned int i = 0; i < m; ++i)
+    for (unsigned int j = 0; j < m; ++j)
+    {
+      T1(i, j) = transpose ? k.T1(j, i) : k.T1(i, j);
+      T2(i, j) = transpose ? k.T2(j, i) : k.T2(i, j);
+    }
+  T2inv.invert(T2);
+  T2inv.mmult(G, T1);
+  // Real Schur form (LAPACK, column major).
+  std::vector<double> a(m * m), vs(m * m), wr(m), wi(m), work(8 * m + 16);
+  for (unsigned int i = 0; i < m; ++i)
+    for (unsigned int j = 0; j < m; ++j)
+      a[i + j * m] = G(i, j);
+  int sdim = 0, info = 0, lwork = static_cast<int>(work.size());
+  std::vector<int> bwork(m);
+  dgees_("V", "N", nullptr, &mi, a.data(), &mi, &sdim, wr.data(), wi.data(), vs.data(),
+         &mi, work.data(), &lwork, bwork.data(), &info);
+  if (info != 0)
+    throw std::runtime_error("kronecker preconditioner: dgees failed, info = " +
+                             std::to_string(info));
+  T.reinit(m, m);
+  Q.reinit(m, m);
+  for (unsigned int i = 0; i < m; ++i)
+    for (unsigned int j = 0; j < m; ++j)
+    {
+      T(i, j) = a[i + j * m];
+      Q(i, j) = vs[i + j * m];
+    }
+  P.reinit(m, m);
+  Q.Tmmult(P, T2inv); // P = Q^T T2^{-1}
+}
+
+KroneckerPreconditioner::Block
+KroneckerPreconditioner::make_block(unsigned int j,
+                                    const dealii::SparseMatrix<double> &S1,
+                                    const dealii::SparseMatrix<double> &S2,
+                                    bool transpose, const IterativeOptions &o) const
+{
+  Block blk;
+  blk.first = j;
+  if (j + 1 < m && T(j + 1, j) != 0.)
+  {
+    blk.size = 2;
+    blk.alpha = 0.5 * (T(j, j) + T(j + 1, j + 1));
+    const double b = T(j, j + 1), c = T(j + 1, j);
+    blk.beta = std::sqrt(std::max(0., -b * c));
+    blk.sigma = -blk.beta / b;
+    blk.rho = blk.beta / c;
+    blk.shift = blk.alpha + blk.beta;
+  }
+  else
+  {
+    blk.size = 1;
+    blk.shift = T(j, j);
+  }
+  if (blk.size == 2 && !presb)
+  {
+    dealii::FullMatrix<double> Tb(2, 2);
+    for (unsigned int s = 0; s < 2; ++s)
+      for (unsigned int t = 0; t < 2; ++t)
+        Tb(s, t) = T(j + s, j + t);
+    blk.map = serial_map(2 * S1.m());
+    blk.matrix = kron_block_tpetra(blk.map, Tb, S1, S2, transpose);
+    blk.in = rcp(new Vec(blk.map));
+    blk.out = rcp(new Vec(blk.map));
+  }
+  else
+    blk.matrix = to_tpetra(space_map, S1, blk.shift, &S2, 1., transpose);
+  if (o.spatial_preconditioner == "amg")
+  {
+    blk.amg = std::make_shared<AmgBlock>(*blk.matrix, blk.map.is_null() ? 1 : 2, o);
+    blk.matrix = Teuchos::null; // ML works on its Epetra copy
+  }
+  else
+  {
+    IterativeOptions io = o;
+    io.ilu_fill = std::max(0., std::round(o.ilu_fill));
+    blk.prec = make_ifpack2("riluk", blk.matrix, io, 1);
+  }
+  return blk;
+}
+
+void KroneckerPreconditioner::inner(const Block &b, const Vec &in, Vec &out)
+{
+  if (b.amg)
+    b.amg->apply(in, out);
+  else
+    b.prec->apply(in, out);
+}
+
+void KroneckerPreconditioner::apply(const MV &X, MV &Y, Teuchos::ETransp mode,
+                                    double alpha, double beta) const
+{
+  if (mode != Teuchos::NO_TRANS)
+    throw std::logic_error("kronecker preconditioner: transposed apply not implemented");
+  for (std::size_t c = 0; c < X.getNumVectors(); ++c)
+  {
+    to_schur_basis(X, c);
+    back_substitute();
+    from_schur_basis(Y, c, alpha, beta);
+  }
+}
+
+void KroneckerPreconditioner::to_schur_basis(const MV &X, std::size_t column) const
+{
+  const std::size_t n = space_map->getNodeNumElements();
+  const SlabLayout slab{m};
+  auto x = X.getData(column);
+  std::vector<Teuchos::ArrayRCP<double>> g(m);
+  for (unsigned int k = 0; k < m; ++k)
+    g[k] = y[k]->getDataNonConst();
+  for (std::size_t i = 0; i < n; ++i)
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      double s = 0;
+      for (unsigned int l = 0; l < m; ++l)
+        s += P(k, l) * x[slab.index(i, l)];
+      g[k][i] = s;
+    }
+}
+
+void KroneckerPreconditioner::back_substitute() const
+{
+  // y holds the transformed right-hand side; overwritten block by block (last first).
+  for (auto b = blocks.rbegin(); b != blocks.rend(); ++b)
+  {
+    const unsigned int j0 = b->first, j1 = b->first + b->size;
+    for (unsigned int j = j0; j < j1; ++j)
+      for (unsigned int l = j1; l < m; ++l)
+        if (T(j, l) != 0.)
+          y[j]->update(-T(j, l), *z[l], 1.);
+    solve_block(*b);
+    if (j0 > 0)
+      for (unsigned int j = j0; j < j1; ++j)
+        S1_t->apply(*y[j], *z[j]);
+  }
+}
+
+void KroneckerPreconditioner::solve_block(const Block &b) const
+{
+  const std::size_t n = space_map->getNodeNumElements();
+  const unsigned int j0 = b.first;
+  if (b.size == 1)
+  {
+    w1->assign(*y[j0]);
+    inner(b, *w1, *y[j0]);
+  }
+  else if (!presb)
+  {
+    {
+      auto in = b.in->getDataNonConst();
+      auto r1 = y[j0]->getData();
+      auto r2 = y[j0 + 1]->getData();
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        in[2 * i] = r1[i];
+        in[2 * i + 1] = r2[i];
+      }
+    }
+    inner(b, *b.in, *b.out);
+    auto out = b.out->getData();
+    auto y1 = y[j0]->getDataNonConst();
+    auto y2 = y[j0 + 1]->getDataNonConst();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      y1[i] = out[2 * i];
+      y2[i] = out[2 * i + 1];
+    }
+  }
+  else
+  {
+    // [[B, -beta S1], [beta S1, B]] [y1; zz] = [f1; f2], f2 = rho r2, y2 = sigma zz.
+    Vec &f1 = *y[j0];
+    Vec &r2 = *y[j0 + 1];
+    w1->update(1., f1, b.rho, r2, 0.); // f1 + f2
+    inner(b, *w1, *h);                 // h = y1 + zz
+    S1_t->apply(*h, *w2);
+    w2->update(1., f1, b.beta); // beta S1 h + f1
+    inner(b, *w2, *w1);         // y1 = (B + beta S1)^{-1}(beta S1 h + f1)
+    y[j0]->assign(*w1);
+    h->update(-1., *w1, 1.); // zz = h - y1
+    y[j0 + 1]->update(b.sigma, *h, 0.);
+  }
+}
+
+void KroneckerPreconditioner::from_schur_basis(MV &Y, std::size_t column, double alpha,
+                                               double beta) const
+{
+  const std::size_t n = space_map->getNodeNumElements();
+  const SlabLayout slab{m};
+  auto out = Y.getDataNonConst(column);
+  std::vector<Teuchos::ArrayRCP<const double>> yy(m);
+  for (unsigned int k = 0; k < m; ++k)
+    yy[k] = y[k]->getData();
+  for (std::size_t i = 0; i < n; ++i)
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      double s = 0;
+      for (unsigned int l = 0; l < m; ++l)
+        s += Q(k, l) * yy[l][i];
+      out[slab.index(i, k)] =
+          (beta == 0. ? 0. : beta * out[slab.index(i, k)]) + alpha * s;
+    }
+}
+} // namespace anisodwr::tpetra
