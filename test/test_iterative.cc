@@ -7,6 +7,7 @@
 #include "study/options.h"
 
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/sparse_direct.h>
 
 #include <gtest/gtest.h>
 
@@ -205,17 +206,19 @@ TEST(Iterative, NonConvergenceThrowsOrFallsBack)
 
 namespace
 {
-TEST(Iterative, AutoPicksBySlabSize)
+TEST(Iterative, AutoPicksBySlabSizeWhenEachSlabIsFactorized)
 {
   SlabProblem s("moving_hump", "", 1, 1e-6);
   const TemporalBasis basis(1);
   SlabSolverOptions o;
   o.type = "auto";
-  o.auto_memory_mb = 1e-9; // no factorization fits: the size threshold decides
+  o.reuse_factorization = false; // one factorization per slab: the size threshold decides
+  o.auto_memory_mb = 1e9;
   o.auto_threshold = 4. * s.space->n_dofs(); // = N_space (r+1)^2: iterative
   SlabOperator<2> big(*s.space, basis, o);
   big.prepare(0., 0.05);
   EXPECT_TRUE(big.iterative());
+  EXPECT_NE(big.auto_choice().find("auto_threshold"), std::string::npos) << big.auto_choice();
   o.auto_threshold += 1;
   SlabOperator<2> small(*s.space, basis, o);
   small.prepare(0., 0.05);
@@ -227,33 +230,79 @@ TEST(Iterative, AutoPicksBySlabSize)
   EXPECT_EQ(slab_solver_options(prm).auto_threshold, 1e6);
 }
 
-TEST(Iterative, AutoKeepsAReusedFactorizationThatFits)
+TEST(Iterative, AutoUsesUmfpackWhileItsPredictedPeakFits)
 {
   SlabProblem s("moving_hump", "", 1, 1e-6);
   const TemporalBasis basis(1);
   SlabSolverOptions o;
   o.type = "auto";
-  o.auto_threshold = 1.; // above the size threshold
-  const double n = 2. * s.space->n_dofs();
-  o.auto_memory_mb = predicted_lu_mb(n, 1);
+  o.auto_threshold = 1.; // far above the size threshold: memory alone decides
+  o.auto_memory_mb = 1e9;
   SlabOperator<2> fits(*s.space, basis, o);
   fits.prepare(0., 0.05);
-  EXPECT_FALSE(fits.iterative()); // constant coefficients: one LU for all slabs
-  // without reuse (or with factors over the budget) the size threshold decides
-  o.reuse_factorization = false;
-  SlabOperator<2> no_reuse(*s.space, basis, o);
-  no_reuse.prepare(0., 0.05);
-  EXPECT_TRUE(no_reuse.iterative());
-  o.reuse_factorization = true;
-  o.auto_memory_mb = 0.99 * predicted_lu_mb(n, 1);
+  ASSERT_FALSE(fits.iterative());
+  EXPECT_EQ(fits.auto_choice().rfind("UMFPACK (predicted peak", 0), 0u) << fits.auto_choice();
+  // UMFPACK's symbolic prediction bounds the factorization's actual peak and factors
+  const DirectSolverInfo info = fits.direct_info();
+  EXPECT_GT(info.factor_mb, 0.);
+  EXPECT_GE(info.predicted_peak_mb, info.peak_mb);
+  EXPECT_GE(info.predicted_factor_mb, info.factor_mb);
+  EXPECT_EQ(fits.timings().factor_mb, info.factor_mb);
+  // a budget just below the predicted peak sends the slab to the Krylov solver
+  o.auto_memory_mb = 0.99 * info.predicted_peak_mb;
   SlabOperator<2> over(*s.space, basis, o);
   over.prepare(0., 0.05);
   EXPECT_TRUE(over.iterative());
-  // the prediction grows faster than n and is larger for Q2 than for Q1
+  EXPECT_EQ(over.auto_choice().rfind("iterative (predicted peak", 0), 0u) << over.auto_choice();
+  EXPECT_EQ(over.timings().n_factorizations, 0u);
+  // and both give the same slab solution (to the Krylov tolerance)
+  const Vector<double> load = random_vector(fits.n_slab_dofs(), 7);
+  Vector<double> Ud, Ui;
+  fits.solve(load, Ud);
+  over.solve(load, Ui);
+  Ui -= Ud;
+  EXPECT_LT(Ui.l2_norm(), 1e-8 * Ud.l2_norm());
+  // the memory model's guess grows faster than n and is larger for Q2 than for Q1
   EXPECT_GT(predicted_lu_mb(2e6, 1), 2. * predicted_lu_mb(1e6, 1));
   EXPECT_GT(predicted_lu_mb(1e6, 2), predicted_lu_mb(1e6, 1));
-  // measured UMFPACK factors (doc/results.md): 2.1e6 unknowns (Q1) about 6 GB
-  EXPECT_NEAR(predicted_lu_mb(2.1e6, 1), 6000., 1500.);
+}
+
+TEST(DirectSolver, SolvesLikeDealIIsUmfpackBitForBit)
+{
+  SlabProblem s("moving_hump", "", 2, 1e-6);
+  const TemporalBasis basis(2);
+  SlabOperator<2> op(*s.space, basis, SlabSolverOptions::direct(true));
+  op.prepare(0., 0.05);
+  SparseMatrix<double> K;
+  SparsityPattern pattern;
+  make_kron_sparsity(s.space->sparsity(), basis.n_dofs(), pattern);
+  K.reinit(pattern);
+  std::vector<KronTerm> terms;
+  for (const auto &t : op.full_terms())
+    terms.push_back(t);
+  assemble_kron(terms, pattern, K);
+  // a nonsymmetric matrix with the slab's pattern
+  DirectSolver ours;
+  ours.factorize(K);
+  SparseDirectUMFPACK theirs;
+  theirs.factorize(K);
+  for (const bool transpose : {false, true})
+  {
+    Vector<double> x = random_vector(K.m(), 3), y = x;
+    ours.solve(x, transpose);
+    theirs.solve(y, transpose);
+    for (unsigned int i = 0; i < x.size(); ++i)
+      ASSERT_EQ(x[i], y[i]) << "entry " << i << (transpose ? " (transposed)" : "");
+    // and it is a solve: K x = b (or K^T x = b)
+    Vector<double> b = random_vector(K.m(), 3), Kx(K.m());
+    if (transpose)
+      K.Tvmult(Kx, x);
+    else
+      K.vmult(Kx, x);
+    Kx -= b;
+    EXPECT_LT(Kx.l2_norm(), 1e-9 * b.l2_norm());
+  }
+  EXPECT_THROW(DirectSolver().factorize(), std::logic_error);
 }
 } // namespace
 

@@ -49,10 +49,11 @@ std::vector<Entry> make_entries()
        "Number of equal time slabs."},
       {"solver", "type", "auto", Kind::text, choice("direct|iterative|auto"),
        "Slab solver: direct (UMFPACK), iterative (Belos Krylov method solver.krylov "
-       "with solver.preconditioner, Trilinos), or auto: UMFPACK while one factorization "
-       "serves all slabs (coefficients constant in time, equal slabs) and its predicted "
-       "factors fit in solver.auto_memory_mb; otherwise iterative iff N_space (r+1)^2 >= "
-       "solver.auto_threshold."},
+       "with solver.preconditioner, Trilinos), or auto: UMFPACK whenever UMFPACK's "
+       "symbolic analysis of the slab matrix predicts a factorization peak within "
+       "solver.auto_memory_mb, iterative otherwise; if the coefficients depend on time "
+       "(a factorization per slab), iterative from N_space (r+1)^2 >= "
+       "solver.auto_threshold. The choice and its reason are printed per loop."},
       {"solver", "dof_numbering", "native", Kind::text, choice("native|downstream"),
        "Spatial DoF order: native (deal.II's cell-wise order) or downstream (sorted along "
        "the convection b at the domain's centre; ILU and Gauss-Seidel then sweep with the "
@@ -62,14 +63,12 @@ std::vector<Entry> make_entries()
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
        "unchanged (same tau, coefficients constant in time)."},
       {"solver", "auto_threshold", "1e6", Kind::real, real(0.),
-       "solver.type = auto: iterative iff N_space (r+1)^2 (slab unknowns times the "
-       "temporal block size, which UMFPACK's cost follows) reaches this (README 'Slab "
-       "solvers': from there gmres+kronecker_presb is faster and 2-4x smaller)."},
+       "solver.type = auto with coefficients that depend on time (the factorization "
+       "cannot be reused): iterative iff N_space (r+1)^2 (slab unknowns times the temporal "
+       "block size, which UMFPACK's cost follows) reaches this."},
       {"solver", "auto_memory_mb", "0", Kind::real, real(0.),
-       "solver.type = auto: largest predicted UMFPACK factor size (MB) for which a "
-       "factorization reused over the slabs is preferred to a Krylov solver (measured "
-       "150 n log2(n) bytes for Q1, 200 for Q2+, n = slab unknowns); 0 = a third of the "
-       "physical memory."},
+       "solver.type = auto: the largest factorization peak (MB, as predicted by UMFPACK's "
+       "symbolic analysis) for which UMFPACK is used; 0 = half the physical memory."},
       {"solver", "krylov", "gmres", Kind::text, choice("gmres|fgmres|bicgstab"),
        "Iterative solver: gmres (restarted, right preconditioned), fgmres (flexible) or "
        "bicgstab (Belos)."},

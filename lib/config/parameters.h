@@ -32,7 +32,7 @@ struct Parameters
   std::string solver_type = "auto";
   bool reuse_factorization = true;
   double solver_auto_threshold = 1e6;
-  double solver_auto_memory_mb = 0.; ///< 0: a third of the physical memory
+  double solver_auto_memory_mb = 0.; ///< 0: half the physical memory
   std::string krylov = "gmres";
   std::string preconditioner = "kronecker_presb";
   double solver_tolerance = 1e-10;

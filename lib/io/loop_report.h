@@ -32,6 +32,9 @@ struct LoopRow
   double err_tau = nan, err_tau_order = nan;
   /// memory estimate of the loop (MB), made before it started (study/memory_estimate.h)
   double mem_estimate = nan;
+  /// UMFPACK's factor size (MB) of the primal and the adjoint slab matrix (0: solved
+  /// iteratively; the largest if several factorizations)
+  double lu_primal_mb = 0, lu_adjoint_mb = 0;
   /// adaptivity.per_goal_estimates: eta_tau h of each goal from its own adjoint
   std::vector<double> eta_goal;
   /// the cells of the refinement that follows this loop (zeros on the last): marked,

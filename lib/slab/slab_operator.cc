@@ -37,17 +37,20 @@ double predicted_lu_mb(double n, unsigned int degree)
   return (degree > 1 ? 200. : 150.) * n * std::log2(std::max(n, 2.)) / (1024. * 1024.);
 }
 
+double auto_memory_budget_mb(const SlabSolverOptions &opt)
+{
+  return opt.auto_memory_mb > 0 ? opt.auto_memory_mb : physical_memory_mb() / 2.;
+}
+
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused)
 {
   // UMFPACK factorizes once and back-substitutes per slab (3.7 s/slab against 20 s for
-  // the best Krylov solver at 2.1e6 unknowns): while the factors fit, it wins.
-  double budget = opt.auto_memory_mb;
-  if (budget <= 0)
-    budget = physical_memory_mb() / 3.;
-  if (factorization_reused && predicted_lu_mb(n, degree) <= budget)
-    return false;
-  return n * m >= opt.auto_threshold;
+  // the best Krylov solver at 2.1e6 unknowns; hemker loops 1-15 3x faster than the
+  // iterative path): while the factors fit, it wins.
+  if (predicted_lu_mb(n, degree) > auto_memory_budget_mb(opt))
+    return true;
+  return !factorization_reused && n * m >= opt.auto_threshold;
 }
 
 bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
@@ -88,10 +91,48 @@ void SlabOperator<dim>::factorize()
   if (!k_assembled)
     assemble_matrix();
   Timer timer;
-  lu.factorize(K);
+  if (!lu.analyzed())
+    lu.analyze(K);
+  lu.factorize();
   time.factorize += timer.wall_time();
+  time.factor_mb = std::max(time.factor_mb, lu.info().factor_mb);
+  time.factor_peak_mb = std::max(time.factor_peak_mb, lu.info().peak_mb);
   ++time.n_factorizations;
   lu_valid = true;
+}
+
+template <int dim>
+void SlabOperator<dim>::choose_solver(bool factorization_reused)
+{
+  const unsigned int m = basis.n_dofs();
+  const double n = double(space.n_dofs()) * m;
+  const double budget = auto_memory_budget_mb(opt);
+  const std::string budget_text = " MB, budget " + std::to_string(long(budget)) + " MB)";
+  if (!factorization_reused && n * m >= opt.auto_threshold)
+  {
+    use_iterative = true;
+    choice = "iterative (a factorization per slab, N_space (r+1)^2 = " +
+             std::to_string(long(n * m)) + " >= solver.auto_threshold)";
+    return;
+  }
+  // UMFPACK's symbolic analysis bounds the factorization's peak memory; it is kept for
+  // the factorization if UMFPACK is chosen.
+  assemble_matrix();
+  Timer timer;
+  const double peak = lu.analyze(K).predicted_peak_mb;
+  time.factorize += timer.wall_time();
+  use_iterative = peak > budget;
+  choice = std::string(use_iterative ? "iterative" : "UMFPACK") + " (predicted peak " +
+           std::to_string(long(std::ceil(peak))) + budget_text;
+  if (use_iterative)
+  {
+    lu.clear();
+    if (!IterativeSlabSolver::needs_assembled_matrix(opt.iterative))
+    {
+      K.clear();
+      k_assembled = false;
+    }
+  }
 }
 
 template <int dim>
@@ -157,15 +198,19 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     kron = {basis.derivative_with_jump(), tM, &mid.Mc, &mid.Ac};
   }
   time.assemble_spatial += timer.wall_time();
-  use_iterative =
-      solves_iteratively(opt, space.n_dofs(), basis.n_dofs(), space.degree(), constant && reuse);
   krylov[0].reset();
   krylov[1].reset();
   lu_valid = false;
+  lu.clear();
   // The kronecker preconditioners work matrix-free: K is assembled only if needed.
   K.clear();
   k_assembled = false;
-  if (!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative))
+  if (opt.type == "auto")
+    choose_solver(constant && reuse);
+  else
+    use_iterative = opt.type == "iterative";
+  if ((!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative)) &&
+      !k_assembled)
     assemble_matrix();
   if (!use_iterative)
     factorize();

@@ -8,9 +8,8 @@
 // reduces to D (x) M + tau Mhat (x) A when b and alpha do not depend on t; the
 // spatial matrices are then assembled once per mesh and the factorization is
 // reused while tau does not change.
-#include <deal.II/lac/sparse_direct.h>
-
 #include "slab/slab_solver_options.h"
+#include "solver/direct_solver.h"
 #include "solver/iterative_solver.h"
 #include "space/space.h"
 #include "time/kronecker.h"
@@ -28,6 +27,8 @@ struct SlabTimings
   /// Krylov solves, their total and largest iteration counts, and the number of
   /// failed Krylov solves replaced by UMFPACK (solver.fallback = direct).
   double precondition = 0;
+  /// UMFPACK: the largest factor size and factorization peak (MB, UMFPACK's figures)
+  double factor_mb = 0, factor_peak_mb = 0;
   unsigned int n_preconditioners = 0, n_krylov_solves = 0, krylov_iterations = 0,
                max_krylov_iterations = 0, n_fallbacks = 0;
 };
@@ -45,12 +46,19 @@ std::string solver_totals_json();
 /// Physical memory of the machine, MB (8192 if the system does not say).
 double physical_memory_mb();
 
-/// Predicted UMFPACK factor size (MB) of an n x n slab matrix of FE_Q(degree): measured
-/// 150 n log2(n) bytes for Q1 and 200 for Q2 and higher (doc/results.md, "Slab solvers").
+/// Predicted UMFPACK factorization peak (MB) of an n x n slab matrix of FE_Q(degree),
+/// before the matrix exists (memory model): a fit to UMFPACK's own figures
+/// (doc/results.md, "Slab solvers").
 double predicted_lu_mb(double n, unsigned int degree);
 
+/// The memory a UMFPACK factorization may take under solver.type = auto (MB):
+/// solver.auto_memory_mb, or half the physical memory if that is 0.
+double auto_memory_budget_mb(const SlabSolverOptions &opt);
+
 /// Which solver solver.type = auto picks (true: iterative) for n slab unknowns with m
-/// temporal DoFs per node, given whether one factorization serves all slabs.
+/// temporal DoFs per node, given whether one factorization serves all slabs, from
+/// predicted_lu_mb (the memory model's guess; SlabOperator decides with UMFPACK's own
+/// symbolic analysis of the assembled matrix).
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused);
 
@@ -92,6 +100,11 @@ public:
   dealii::types::global_dof_index n_slab_dofs() const { return space.n_dofs() * basis.n_dofs(); }
   /// True if the last prepare() chose the iterative path.
   bool iterative() const { return use_iterative; }
+  /// solver.type = auto: the last prepare()'s choice and its reason, e.g. "UMFPACK
+  /// (predicted peak 812 MB <= budget 12288 MB)"; empty for direct and iterative.
+  const std::string &auto_choice() const { return choice; }
+  /// UMFPACK's figures of the last analysis and factorization.
+  const DirectSolverInfo &direct_info() const { return lu.info(); }
 
 private:
   const Space<dim> &space;
@@ -105,7 +118,8 @@ private:
   const dealii::SparseMatrix<double> *jump_M = nullptr;
   dealii::SparsityPattern pattern;
   dealii::SparseMatrix<double> K;
-  dealii::SparseDirectUMFPACK lu;
+  DirectSolver lu;
+  std::string choice;
   bool factorized = false;
   KronSplit kron;
   std::unique_ptr<IterativeSlabSolver> krylov[2]; // [transpose]
@@ -113,6 +127,9 @@ private:
   bool lu_valid = false, k_assembled = false;
   void assemble_matrix();
   void factorize(); ///< assembles K first if the iterative path skipped it
+  /// solver.type = auto: sets use_iterative (analyzing K with UMFPACK if one
+  /// factorization would serve all slabs) and `choice`.
+  void choose_solver(bool factorization_reused);
   /// Krylov solve in place (rhs -> solution); returns the time spent on setup.
   double solve_iterative(dealii::Vector<double> &rhs, bool transpose);
   double t0 = 0, tau = -1;

@@ -11,9 +11,9 @@ struct SlabSolverOptions
 {
   std::string type = "direct"; ///< direct | iterative | auto
   bool reuse_factorization = true;
-  /// auto: UMFPACK while one factorization serves all slabs and its predicted size
-  /// (predicted_lu_mb) is at most auto_memory_mb (0: a third of the physical memory);
-  /// otherwise iterative iff N_space (r+1)^2 >= auto_threshold.
+  /// auto: UMFPACK while UMFPACK's symbolic analysis predicts a factorization peak of at
+  /// most auto_memory_mb (0: half the physical memory); with coefficients that depend
+  /// on time (a factorization per slab) iterative iff N_space (r+1)^2 >= auto_threshold.
   double auto_threshold = 1e6;
   double auto_memory_mb = 0.;
   std::string fallback = "direct"; ///< none | direct

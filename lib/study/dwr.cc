@@ -139,6 +139,9 @@ private:
   std::vector<LoopRow> rows;
   std::vector<std::pair<double, std::string>> vtu_records;
   std::string stop_reason = "max loops";
+  /// solver.type = auto: the last choice printed per problem (primal, adjoint)
+  std::string auto_choice[2];
+  void report_auto_choice(unsigned int loop, unsigned int problem, const std::string &c);
   /// the memory estimate: the process before the loops' data, the limit, and the last
   /// loop's measured/estimated peak (>= 1) that scales the next estimate
   double base_mb = 0;
@@ -290,6 +293,8 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
     // (the primal's factors are freed before the adjoint factorizes)
     SlabOperator<2> op(primal, basis, slab_solver_options(prm));
     U = march_primal(primal, mesh, basis, op, opt);
+    report_auto_choice(row.loop, 0, op.auto_choice());
+    row.lu_primal_mb = op.timings().factor_mb;
   }
   // the dG(r+1) primal of time_indicator = higher_order
   const TemporalBasis basis_hi(prm.r + 1);
@@ -313,6 +318,8 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   const auto Z = march_adjoint(adjoint, mesh, basis, opq,
                                assemble_goal_vectors(adjoint, goals), opt);
   row.t_adjoint = t.wall_time();
+  report_auto_choice(row.loop, 1, opq.auto_choice());
+  row.lu_adjoint_mb = opq.timings().factor_mb;
 
   t.restart();
   ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, time_indicator(prm), hi_ptr,
@@ -348,6 +355,17 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   combine_blocks(U.back(), basis.right_trace(), uT);
   write_loop_outputs(row, primal, uT, ind, ar_cell);
   return true;
+}
+
+void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
+                                      const std::string &c)
+{
+  // printed when the solver changes (first word), so that the table stays readable
+  if (c.empty() || c.substr(0, 8) == auto_choice[problem].substr(0, 8))
+    return;
+  auto_choice[problem] = c;
+  std::cout << "  loop " << loop << (problem ? " adjoint" : " primal")
+            << ", solver.type = auto: " << c << "\n";
 }
 
 void AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,

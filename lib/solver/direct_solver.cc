@@ -1,0 +1,112 @@
+#include "solver/direct_solver.h"
+
+#include <umfpack.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace anisodwr
+{
+namespace
+{
+void check(const char *call, long status)
+{
+  if (status == UMFPACK_WARNING_singular_matrix)
+    throw std::runtime_error(std::string("UMFPACK: ") + call + ": the matrix is singular");
+  if (status != UMFPACK_OK)
+    throw std::runtime_error(std::string("UMFPACK: ") + call + " failed with status " +
+                             std::to_string(status));
+}
+
+double megabytes(const double *info, int entry)
+{
+  return info[entry] * info[UMFPACK_SIZE_OF_UNIT] / (1024. * 1024.);
+}
+} // namespace
+
+DirectSolver::DirectSolver()
+{
+  static_assert(sizeof(control) / sizeof(double) == UMFPACK_CONTROL, "UMFPACK control size");
+  umfpack_dl_defaults(control);
+}
+
+DirectSolver::~DirectSolver() { clear(); }
+
+void DirectSolver::clear()
+{
+  if (numeric)
+    umfpack_dl_free_numeric(&numeric);
+  if (symbolic)
+    umfpack_dl_free_symbolic(&symbolic);
+  numeric = symbolic = nullptr;
+  std::vector<long>().swap(Ap);
+  std::vector<long>().swap(Ai);
+  std::vector<double>().swap(Ax);
+}
+
+const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double> &A)
+{
+  clear();
+  figures = DirectSolverInfo();
+  const auto n = A.m();
+  Ap.assign(n + 1, 0);
+  Ai.resize(A.n_nonzero_elements());
+  Ax.resize(A.n_nonzero_elements());
+  // Row-wise, column indices ascending (deal.II stores the diagonal first): UMFPACK
+  // reads the rows as the columns of A^T.
+  std::vector<std::pair<long, double>> row;
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    row.clear();
+    for (auto e = A.begin(i); e != A.end(i); ++e)
+      row.emplace_back(long(e->column()), e->value());
+    std::sort(row.begin(), row.end(),
+              [](const auto &a, const auto &b) { return a.first < b.first; });
+    const long start = Ap[i];
+    for (std::size_t k = 0; k < row.size(); ++k)
+    {
+      Ai[start + k] = row[k].first;
+      Ax[start + k] = row[k].second;
+    }
+    Ap[i + 1] = start + long(row.size());
+  }
+  double info[UMFPACK_INFO];
+  check("umfpack_dl_symbolic", umfpack_dl_symbolic(long(n), long(n), Ap.data(), Ai.data(),
+                                                   Ax.data(), &symbolic, control, info));
+  figures.predicted_peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY_ESTIMATE);
+  figures.predicted_factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE_ESTIMATE);
+  figures.predicted_flops = info[UMFPACK_FLOPS_ESTIMATE];
+  return figures;
+}
+
+void DirectSolver::factorize()
+{
+  if (!symbolic)
+    throw std::logic_error("DirectSolver::factorize before analyze");
+  if (numeric)
+    umfpack_dl_free_numeric(&numeric);
+  double info[UMFPACK_INFO];
+  check("umfpack_dl_numeric", umfpack_dl_numeric(Ap.data(), Ai.data(), Ax.data(), symbolic,
+                                                 &numeric, control, info));
+  figures.peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY);
+  figures.factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE);
+  figures.flops = info[UMFPACK_FLOPS];
+}
+
+void DirectSolver::factorize(const dealii::SparseMatrix<double> &A)
+{
+  analyze(A);
+  factorize();
+}
+
+void DirectSolver::solve(dealii::Vector<double> &x, bool transpose) const
+{
+  if (!numeric)
+    throw std::logic_error("DirectSolver::solve before factorize");
+  const dealii::Vector<double> b(x);
+  check("umfpack_dl_solve",
+        umfpack_dl_solve(transpose ? UMFPACK_A : UMFPACK_At, Ap.data(), Ai.data(), Ax.data(),
+                         x.begin(), b.begin(), numeric, control, nullptr));
+}
+} // namespace anisodwr

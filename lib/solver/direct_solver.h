@@ -1,0 +1,52 @@
+#pragma once
+// UMFPACK for a deal.II SparseMatrix with the analysis split from the factorization,
+// so that the memory and work of a factorization are known before it is computed:
+// solver.type = auto asks analyze() and factorizes only if the predicted peak fits.
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <vector>
+
+namespace anisodwr
+{
+/// UMFPACK's own figures for one matrix (MB and floating-point operations).
+struct DirectSolverInfo
+{
+  /// after analyze(): upper bounds from the symbolic analysis
+  double predicted_peak_mb = 0, predicted_factor_mb = 0, predicted_flops = 0;
+  /// after factorize(): the actual peak of the factorization and the size of the factors
+  double peak_mb = 0, factor_mb = 0, flops = 0;
+};
+
+/// Same arithmetic as dealii::SparseDirectUMFPACK (UMFPACK's default control, the
+/// matrix passed row-wise so that UMFPACK factors A^T), hence identical solutions.
+class DirectSolver
+{
+public:
+  DirectSolver();
+  ~DirectSolver();
+  DirectSolver(const DirectSolver &) = delete;
+  DirectSolver &operator=(const DirectSolver &) = delete;
+
+  /// Copies A and runs the symbolic analysis (ordering, predicted fill and memory).
+  const DirectSolverInfo &analyze(const dealii::SparseMatrix<double> &A);
+  /// Numeric factorization of the analyzed matrix (analyze(A) first if `A` is given).
+  void factorize();
+  void factorize(const dealii::SparseMatrix<double> &A);
+  /// x := A^{-1} x, or A^{-T} x.
+  void solve(dealii::Vector<double> &x, bool transpose = false) const;
+
+  bool analyzed() const { return symbolic != nullptr; }
+  bool factorized() const { return numeric != nullptr; }
+  const DirectSolverInfo &info() const { return figures; }
+  /// Frees the factors and the analysis.
+  void clear();
+
+private:
+  std::vector<long> Ap, Ai;
+  std::vector<double> Ax;
+  double control[20];
+  void *symbolic = nullptr, *numeric = nullptr;
+  DirectSolverInfo figures;
+};
+} // namespace anisodwr
