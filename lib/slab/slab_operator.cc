@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace anisodwr
 {
@@ -32,9 +33,37 @@ std::string solver_totals_json()
          ", \"max_iterations\": " + std::to_string(totals.max_krylov_iterations) + "}";
 }
 
-double predicted_lu_mb(double n, unsigned int degree)
+namespace
 {
-  return (degree > 1 ? 200. : 150.) * n * std::log2(std::max(n, 2.)) / (1024. * 1024.);
+/// The last UMFPACK factorization measured per (degree, m): unknowns and peak (MB).
+std::map<std::pair<unsigned int, unsigned int>, std::pair<double, double>> lu_records;
+} // namespace
+
+double fitted_lu_mb(double n, unsigned int degree, unsigned int m)
+{
+  // Measured UMFPACK peaks (bytes per slab unknown) on the adaptive meshes of
+  // moving_hump and hemker, 1e3-2.4e5 unknowns: Q1 755 (m = 1), 1370 (m = 3); Q2 970,
+  // 2040 (doc/results.md, "Slab solvers"), i.e. a work space W plus F per temporal
+  // DoF; 25% margin.
+  const double W = 450., F = degree > 1 ? 540. : 310.;
+  return 1.25 * n * (W + F * m) / (1024. * 1024.);
+}
+
+double predicted_lu_mb(double n, unsigned int degree, unsigned int m)
+{
+  const auto record = lu_records.find({std::min(degree, 2u), m});
+  if (record != lu_records.end())
+  {
+    // UMFPACK's peak per unknown of the last factorization, allowed to grow like log n
+    const auto [n0, peak0] = record->second;
+    return 1.1 * peak0 * (n / n0) * std::max(1., std::log2(n) / std::log2(n0));
+  }
+  return fitted_lu_mb(n, degree, m);
+}
+
+void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb)
+{
+  lu_records[{std::min(degree, 2u), m}] = {n, peak_mb};
 }
 
 double auto_memory_budget_mb(const SlabSolverOptions &opt)
@@ -48,7 +77,7 @@ bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m
   // UMFPACK factorizes once and back-substitutes per slab (3.7 s/slab against 20 s for
   // the best Krylov solver at 2.1e6 unknowns; hemker loops 1-15 3x faster than the
   // iterative path): while the factors fit, it wins.
-  if (predicted_lu_mb(n, degree) > auto_memory_budget_mb(opt))
+  if (predicted_lu_mb(n, degree, m) > auto_memory_budget_mb(opt))
     return true;
   return !factorization_reused && n * m >= opt.auto_threshold;
 }
@@ -97,6 +126,7 @@ void SlabOperator<dim>::factorize()
   time.factorize += timer.wall_time();
   time.factor_mb = std::max(time.factor_mb, lu.info().factor_mb);
   time.factor_peak_mb = std::max(time.factor_peak_mb, lu.info().peak_mb);
+  record_lu(K.m(), space.degree(), basis.n_dofs(), lu.info().peak_mb);
   ++time.n_factorizations;
   lu_valid = true;
 }
@@ -106,33 +136,18 @@ void SlabOperator<dim>::choose_solver(bool factorization_reused)
 {
   const unsigned int m = basis.n_dofs();
   const double n = double(space.n_dofs()) * m;
-  const double budget = auto_memory_budget_mb(opt);
-  const std::string budget_text = " MB, budget " + std::to_string(long(budget)) + " MB)";
-  if (!factorization_reused && n * m >= opt.auto_threshold)
-  {
-    use_iterative = true;
+  const double peak = predicted_lu_mb(n, space.degree(), m),
+               budget = auto_memory_budget_mb(opt);
+  use_iterative = auto_picks_iterative(opt, n, m, space.degree(), factorization_reused);
+  const std::string memory = "predicted UMFPACK peak " + std::to_string(long(std::ceil(peak))) +
+                             " MB, budget " + std::to_string(long(budget)) + " MB";
+  if (!use_iterative)
+    choice = "UMFPACK (" + memory + ")";
+  else if (peak > budget)
+    choice = "iterative (" + memory + ")";
+  else
     choice = "iterative (a factorization per slab, N_space (r+1)^2 = " +
              std::to_string(long(n * m)) + " >= solver.auto_threshold)";
-    return;
-  }
-  // UMFPACK's symbolic analysis bounds the factorization's peak memory; it is kept for
-  // the factorization if UMFPACK is chosen.
-  assemble_matrix();
-  Timer timer;
-  const double peak = lu.analyze(K).predicted_peak_mb;
-  time.factorize += timer.wall_time();
-  use_iterative = peak > budget;
-  choice = std::string(use_iterative ? "iterative" : "UMFPACK") + " (predicted peak " +
-           std::to_string(long(std::ceil(peak))) + budget_text;
-  if (use_iterative)
-  {
-    lu.clear();
-    if (!IterativeSlabSolver::needs_assembled_matrix(opt.iterative))
-    {
-      K.clear();
-      k_assembled = false;
-    }
-  }
 }
 
 template <int dim>

@@ -46,19 +46,24 @@ std::string solver_totals_json();
 /// Physical memory of the machine, MB (8192 if the system does not say).
 double physical_memory_mb();
 
-/// Predicted UMFPACK factorization peak (MB) of an n x n slab matrix of FE_Q(degree),
-/// before the matrix exists (memory model): a fit to UMFPACK's own figures
-/// (doc/results.md, "Slab solvers").
-double predicted_lu_mb(double n, unsigned int degree);
+/// UMFPACK factorization peak (MB) of an n x n slab matrix of FE_Q(degree) with m
+/// temporal DoFs per node as fitted to measured peaks (doc/results.md, "Slab solvers").
+double fitted_lu_mb(double n, unsigned int degree, unsigned int m);
+/// Predicted UMFPACK factorization peak (MB): extrapolated from the last factorization
+/// of the same degree and m in this process (record_lu), else fitted_lu_mb. UMFPACK's own symbolic bound is far too loose for
+/// this (33x at 2.4e5 unknowns).
+double predicted_lu_mb(double n, unsigned int degree, unsigned int m);
+/// Records a measured factorization peak for predicted_lu_mb (SlabOperator does).
+void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb);
 
 /// The memory a UMFPACK factorization may take under solver.type = auto (MB):
 /// solver.auto_memory_mb, or half the physical memory if that is 0.
 double auto_memory_budget_mb(const SlabSolverOptions &opt);
 
 /// Which solver solver.type = auto picks (true: iterative) for n slab unknowns with m
-/// temporal DoFs per node, given whether one factorization serves all slabs, from
-/// predicted_lu_mb (the memory model's guess; SlabOperator decides with UMFPACK's own
-/// symbolic analysis of the assembled matrix).
+/// temporal DoFs per node, given whether one factorization serves all slabs: UMFPACK
+/// while predicted_lu_mb fits auto_memory_budget_mb, except that with a factorization
+/// per slab sizes from N_space m^2 >= auto_threshold go to the iterative solver.
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused);
 
