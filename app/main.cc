@@ -74,15 +74,15 @@ int main(int argc, char **argv)
     if (!output.empty())
       overrides.push_back("output.directory=" + output);
     const Parameters prm = Parameters::read(args[1], overrides);
-    lock_output_directory(prm.output_directory);
-    if (prm.mode == "dwr")
+    lock_output_directory(prm.output.directory);
+    if (prm.study.mode == StudyMode::dwr)
       run_dwr(prm);
     else
       run_study(prm);
-    std::cout << "results: " << prm.output_directory << "/ (summary.json";
-    std::cout << (prm.mode == "convergence" ? ", convergence.csv"
-                  : prm.mode == "dwr"       ? ", loops.csv, loops.tex, loops.pvd"
-                                            : ", solution.pvd")
+    std::cout << "results: " << prm.output.directory << "/ (summary.json";
+    std::cout << (prm.study.mode == StudyMode::convergence ? ", convergence.csv"
+                  : prm.study.mode == StudyMode::dwr ? ", loops.csv, loops.tex, loops.pvd"
+                                                     : ", solution.pvd")
               << ")\n";
     return exit_ok;
   }

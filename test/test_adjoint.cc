@@ -38,7 +38,7 @@ std::vector<GoalSpec> goals()
   a.center = {0.4, 0.55};
   a.radius = 0.15;
   b.name = "mean_I";
-  b.kind = "mean";
+  b.kind = GoalKind::mean;
   b.over_time = true;
   b.lower = {0.1, 0.2};
   b.upper = {0.6, 0.7};

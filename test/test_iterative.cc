@@ -226,7 +226,7 @@ TEST(Iterative, AutoPicksBySlabSizeWhenEachSlabIsFactorized)
   EXPECT_EQ(small.timings().n_factorizations, 1u);
   // The config default is auto with a threshold of 1e6 slab unknowns.
   const Parameters prm = Parameters::from_overrides({});
-  EXPECT_EQ(prm.solver_type, "auto");
+  EXPECT_EQ(prm.solver.type, "auto");
   EXPECT_EQ(slab_solver_options(prm).auto_threshold, 1e6);
 }
 
@@ -445,8 +445,8 @@ TEST(Stagnation, ConvergingSolvesAreUnaffected)
 TEST(Stagnation, KeysHaveDefaults)
 {
   const Parameters prm = Parameters::from_overrides({});
-  EXPECT_EQ(prm.stagnation_window, 50u);
-  EXPECT_EQ(prm.stagnation_factor, 10.);
+  EXPECT_EQ(prm.solver.stagnation_window, 50u);
+  EXPECT_EQ(prm.solver.stagnation_factor, 10.);
   const auto o = slab_solver_options(Parameters::from_overrides(
       {"solver.stagnation_window=0", "solver.stagnation_factor=100"}));
   EXPECT_EQ(o.iterative.stagnation_window, 0u);
@@ -500,8 +500,8 @@ TEST(Amg, KroneckerPreconditionersWithAmgAgreeWithUmfpack)
 TEST(Amg, KeysAndDefault)
 {
   const Parameters prm = Parameters::from_overrides({});
-  EXPECT_EQ(prm.spatial_preconditioner, "ilu");
-  EXPECT_EQ(prm.amg_smoother, "ilu");
+  EXPECT_EQ(prm.solver.spatial_preconditioner, "ilu");
+  EXPECT_EQ(prm.solver.amg_smoother, "ilu");
   const auto o = slab_solver_options(Parameters::from_overrides(
       {"solver.spatial_preconditioner=amg", "solver.amg_smoother=chebyshev"}));
   EXPECT_EQ(o.iterative.spatial_preconditioner, "amg");

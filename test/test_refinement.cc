@@ -43,7 +43,7 @@ TEST(Marking, CellMarkingCutsOnlyTheDirectionsACellNeeds)
       {{1., 0.1}},   {{-0.05, 0.9}}, {{0.6, -0.5}},   {{0.02, 0.02}},
       {{0.8, 0.45}}, {{1e-3, 0.}},   {{0.01, -0.03}}, {{0., 0.}}};
   MarkingOptions opt;
-  opt.marking = "cell";
+  opt.marking = Marking::cell;
   opt.theta_h = 0.5; // four cells
   opt.kappa = 0.5;
   const MarkingStats s = mark_cells(tria, indicators(eta), opt);
@@ -71,7 +71,7 @@ TEST(Marking, KappaOneCutsOnlyTheDominantDirectionAndZeroIsIsotropic)
     GridGenerator::subdivided_hyper_rectangle(tria, {4, 1}, Point<2>(0, 0),
                                               Point<2>(4, 1));
     MarkingOptions opt;
-    opt.marking = "cell";
+    opt.marking = Marking::cell;
     opt.theta_h = 0.5;
     opt.kappa = kappa;
     mark_cells(tria, indicators(eta), opt);
@@ -92,7 +92,7 @@ TEST(Marking, JointMarkingTakesTheWeakDirectionOfStrongCellsFirst)
   Triangulation<2> tria;
   GridGenerator::subdivided_hyper_rectangle(tria, {4, 1}, Point<2>(0, 0), Point<2>(4, 1));
   MarkingOptions opt;
-  opt.marking = "joint";
+  opt.marking = Marking::joint;
   opt.theta_h = 0.25; // 2 of the 8 pairs
   const MarkingStats s = mark_cells(tria, indicators(eta), opt);
   const auto f = flags(tria);

@@ -28,6 +28,7 @@
 // value of the adjoint, z(T^+) = M^{-1} j_T, comes from end_time_representer
 // (slab/adjoint_march.h). The cell integrals are in cell_kernel.h; the localized forms
 // for the tests in localized_forms.cc.
+#include "adaptivity/choices.h"
 #include "goal/goal.h"
 #include "space/space.h"
 #include "time/temporal_basis.h"
@@ -64,36 +65,6 @@ template <int dim> struct Indicators
       s += e;
     return s;
   }
-};
-
-/// Which form of the temporal error representation eta_tau uses.
-enum class TimeIndicator
-{
-  /// 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u) (SPEC §5)
-  average,
-  /// rho*(u,z)(E u - u): the adjoint residual weighted by the primal's temporal error.
-  /// J(e) = rho*(u, z_tau h)(u - u_tau h) holds exactly for the discrete adjoint, so
-  /// only the primal has to be resolved in time; the primal-residual form needs
-  /// E z - z ~ z - z_tau h, which fails when the adjoint is a pulse crossing the
-  /// mollifier in a fraction of a slab (moving hump: |b| tau / s = 18).
-  adjoint_residual,
-  /// rho*(u,z)(u_r+1 - u) with u_r+1 the primal solved once more in dG(r+1) on the same
-  /// slabs and mesh (HigherOrderPrimal), including J_T's end part J_T(u_r+1(T) - u(T)).
-  /// The Radau reconstruction E u assumes dG(r)'s nodal superconvergence (E u - u = 0
-  /// at t_n), which a layer that crosses a slab destroys; u_r+1 does not. For q = p,
-  /// no SUPG and u_r+1 = u, eta_tau = J(u) - J(u_tau h) exactly.
-  higher_order
-};
-
-/// Which form of the spatial error representation eta_h,i uses.
-enum class SpaceIndicator
-{
-  /// 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - u) + S terms (SPEC §5); on a
-  /// (cell, direction) without a lift only the primal half
-  average,
-  /// rho(u)(z - R_i z) + S(u)(R_h z) share: the primal-residual form alone, which needs
-  /// no lift of u (exact up to z ~ z_tau h and the directional split)
-  primal_residual
 };
 
 /// The primal solved once more in dG(r+1) (basis.degree() = r+1) on the same slabs and

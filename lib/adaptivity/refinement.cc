@@ -37,9 +37,9 @@ std::vector<RefinementCase<dim>> refinement_cases(unsigned int n,
                                                   const MarkingOptions &options)
 {
   std::vector<RefinementCase<dim>> cut(n, RefinementCase<dim>::no_refinement);
-  if (options.mode == "uniform")
+  if (options.mode == AdaptivityMode::uniform)
     std::fill(cut.begin(), cut.end(), RefinementCase<dim>::isotropic_refinement);
-  else if (options.mode == "isotropic")
+  else if (options.mode == AdaptivityMode::isotropic)
   {
     std::vector<double> eta(n);
     for (unsigned int c = 0; c < n; ++c)
@@ -48,7 +48,7 @@ std::vector<RefinementCase<dim>> refinement_cases(unsigned int n,
     for (unsigned int c : largest(eta, options.theta_h))
       cut[c] = RefinementCase<dim>::isotropic_refinement;
   }
-  else if (options.marking == "joint")
+  else if (options.marking == Marking::joint)
   {
     // all (cell, direction) pairs ranked together; the theta_h * dim * n largest marked
     std::vector<double> eta(n * dim);
@@ -58,7 +58,7 @@ std::vector<RefinementCase<dim>> refinement_cases(unsigned int n,
     for (unsigned int ci : largest(eta, options.theta_h))
       cut[ci / dim] = cut[ci / dim] | RefinementCase<dim>::cut_axis(ci % dim);
   }
-  else if (options.marking == "cell")
+  else if (options.marking == Marking::cell)
   {
     std::vector<double> eta(n, 0.);
     for (unsigned int c = 0; c < n; ++c)
@@ -94,7 +94,7 @@ MarkingStats mark_cells(Triangulation<dim> &tria, const Indicators<dim> &ind,
   const unsigned int n = tria.n_active_cells();
   const std::vector<RefinementCase<dim>> cut = refinement_cases(n, ind, options);
   std::vector<bool> coarsen(n, false);
-  if (options.theta_coarsen > 0 && options.mode != "uniform")
+  if (options.theta_coarsen > 0 && options.mode != AdaptivityMode::uniform)
   {
     std::vector<double> eta(n);
     for (unsigned int c = 0; c < n; ++c)

@@ -16,15 +16,15 @@ namespace anisodwr
 {
 struct MarkingOptions
 {
-  std::string mode = "anisotropic"; ///< anisotropic | isotropic | uniform
-  /// anisotropic mode: "joint" ranks all (cell, direction) pairs by |eta_h,i^K| together
-  /// and marks the theta_h fraction of them; "per_direction" marks the theta_h fraction
+  AdaptivityMode mode = AdaptivityMode::anisotropic;
+  /// anisotropic mode: joint ranks all (cell, direction) pairs by |eta_h,i^K| together
+  /// and marks the theta_h fraction of them; per_direction marks the theta_h fraction
   /// of cells separately in each direction (SPEC §6 literally; a cell whose indicators
   /// are all large is then cut in every direction even if one dominates).
-  /// "cell": mark the theta_h fraction of cells by sum_i |eta_h,i^K|; a marked cell is
+  /// cell: mark the theta_h fraction of cells by sum_i |eta_h,i^K|; a marked cell is
   /// cut in direction i iff |eta_h,i^K| >= kappa * max_j |eta_h,j^K| (the directions
   /// the cell needs, not every direction whose pair passed a global threshold).
-  std::string marking = "cell";
+  Marking marking = Marking::cell;
   double theta_h = 0.25, theta_coarsen = 0., kappa = 0.75;
 };
 
@@ -55,7 +55,7 @@ template <int dim>
 typename dealii::Triangulation<dim>::MeshSmoothing
 tria_smoothing(const MarkingOptions &options)
 {
-  return options.mode == "anisotropic"
+  return options.mode == AdaptivityMode::anisotropic
              ? dealii::Triangulation<dim>::allow_anisotropic_smoothing
              : dealii::Triangulation<dim>::none;
 }

@@ -63,7 +63,7 @@ public:
   Reader()
   {
     for (const auto &e : entries())
-      values[e.section + "." + e.key] = e.default_value;
+      values[e.name()] = e.default_value;
   }
 
   void set(const std::string &section, const std::string &key, const std::string &value,
@@ -201,67 +201,20 @@ public:
         assignment.substr(eq + 1), "--set");
   }
 
+  /// The values as Parameters, in the order of the table; then the checks of
+  /// Check::bounded_positive (after all keys, so a bad fraction is reported first).
   Parameters typed() const
   {
     Parameters p;
-    p.scene = get("scene.name");
-    p.variant = get("scene.variant");
-    p.epsilon = real("scene.epsilon");
-    p.end_time = real("scene.end_time");
-    p.p = integer("discretization.p");
-    p.r = integer("discretization.r");
-    p.delta0 = real("discretization.delta0");
-    p.supg_length = get("discretization.supg_length");
-    p.supg_tau_factor = real("discretization.supg_tau_factor");
-    p.initial_refinements = integer("discretization.initial_refinements");
-    p.n_slabs = integer("discretization.n_slabs");
-    p.solver_type = get("solver.type");
-    p.reuse_factorization = boolean("solver.reuse_factorization");
-    p.solver_auto_threshold = real("solver.auto_threshold");
-    p.solver_auto_memory_mb = real("solver.auto_memory_mb");
-    p.krylov = get("solver.krylov");
-    p.preconditioner = get("solver.preconditioner");
-    p.solver_tolerance = real("solver.tolerance");
-    p.restart = integer("solver.restart");
-    p.max_iterations = integer("solver.max_iterations");
-    p.ilu_fill = real("solver.ilu_fill");
-    p.spatial_preconditioner = get("solver.spatial_preconditioner");
-    p.amg_smoother = get("solver.amg_smoother");
-    p.stagnation_window = integer("solver.stagnation_window");
-    p.stagnation_factor = real("solver.stagnation_factor");
-    p.fallback = get("solver.fallback");
-    p.mode = get("study.mode");
-    p.refine = get("study.refine");
-    p.levels = integer("study.levels");
-    p.goal_kind = get("goal.kind");
-    p.goal_locations = get("goal.locations");
-    p.goal_over_time = boolean("goal.over_time");
-    p.goal_radius = real("goal.radius");
-    p.goal_weights = get("goal.weights");
-    p.adaptivity_mode = get("adaptivity.mode");
-    p.marking = get("adaptivity.marking");
-    p.kappa = fraction("adaptivity.kappa");
-    p.loops = integer("adaptivity.loops");
-    p.theta_h = fraction("adaptivity.theta_h");
-    p.theta_tau = fraction("adaptivity.theta_tau");
-    p.theta_coarsen = fraction("adaptivity.theta_coarsen");
-    p.tolerance = real("adaptivity.tolerance");
-    p.max_dofs = real("adaptivity.max_dofs");
-    p.max_memory_mb = real("adaptivity.max_memory_mb");
-    p.max_wall_time = real("adaptivity.max_wall_time");
-    p.adjoint_degree = integer("adaptivity.adjoint_degree");
-    p.adjoint_stabilization = get("adaptivity.adjoint_stabilization");
-    p.space_indicator = get("adaptivity.space_indicator");
-    p.dof_numbering = get("solver.dof_numbering");
-    p.measure_time_error = boolean("adaptivity.measure_time_error");
-    p.time_indicator = get("adaptivity.time_indicator");
-    p.per_goal_estimates = boolean("adaptivity.per_goal_estimates");
-    p.vtu_loops = integer("output.vtu_loops");
-    p.output_directory = get("output.directory");
-    p.vtu_every = integer("output.vtu_every");
-    p.progress = boolean("output.progress");
-    bounded_positive("scene.epsilon", p.epsilon);
-    bounded_positive("scene.end_time", p.end_time);
+    for (const auto &e : entries())
+    {
+      e.member.set(p, get(e.name()));
+      if (e.check == Check::fraction)
+        fraction(e.name());
+    }
+    for (const auto &e : entries())
+      if (e.check == Check::bounded_positive)
+        bounded_positive(e.name());
     for (const auto &[key, value] : values)
       p.sources[key] = origin(key);
     return p;
@@ -278,22 +231,17 @@ private:
 
   std::string get(const std::string &k) const { return values.at(k); }
   double real(const std::string &k) const { return std::stod(get(k)); }
-  unsigned int integer(const std::string &k) const { return std::stoul(get(k)); }
-  bool boolean(const std::string &k) const
+  /// v <= 1 (Check::fraction)
+  void fraction(const std::string &k) const
   {
-    return get(k) == "true" || get(k) == "True" || get(k) == "yes";
-  }
-  double fraction(const std::string &k) const
-  {
-    const double v = real(k);
-    if (v > 1.)
+    if (real(k) > 1.)
       throw InputError(origin(k) + ": invalid value '" + get(k) + "' for key '" + k +
                        "'; expected a fraction in [0, 1]");
-    return v;
   }
-  /// 0 < v <= 1e6 (scene.epsilon, scene.end_time)
-  void bounded_positive(const std::string &k, double v) const
+  /// 0 < v <= 1e6 (Check::bounded_positive)
+  void bounded_positive(const std::string &k) const
   {
+    const double v = real(k);
     if (!(v > 0.) || !(v <= 1e6))
       throw InputError(origin(k) + ": invalid value '" + get(k) + "' for key '" + k +
                        "'; expected a number with 0 < v <= 1e6");
@@ -302,9 +250,9 @@ private:
 
 std::string json_value(const Entry &e, const std::string &value)
 {
-  if (e.kind == Kind::text)
+  if (e.kind() == Kind::text)
     return "\"" + value + "\"";
-  if (e.kind == Kind::boolean)
+  if (e.kind() == Kind::boolean)
     return (value == "true" || value == "True" || value == "yes") ? "true" : "false";
   return value;
 }
@@ -368,76 +316,15 @@ void Parameters::print_defaults(std::ostream &out)
 {
   std::map<std::string, std::string> values;
   for (const auto &e : entries())
-    values[e.section + "." + e.key] = e.default_value;
+    values[e.name()] = e.default_value;
   out << format(values, true, 0) << std::endl;
 }
 
 std::string Parameters::to_json(unsigned int indent) const
 {
-  auto num = [](double v)
-  {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-  };
-  std::map<std::string, std::string> v{
-      {"scene.name", scene},
-      {"scene.variant", variant},
-      {"scene.epsilon", num(epsilon)},
-      {"scene.end_time", num(end_time)},
-      {"discretization.p", std::to_string(p)},
-      {"discretization.r", std::to_string(r)},
-      {"discretization.delta0", num(delta0)},
-      {"discretization.supg_length", supg_length},
-      {"discretization.supg_tau_factor", num(supg_tau_factor)},
-      {"discretization.initial_refinements", std::to_string(initial_refinements)},
-      {"discretization.n_slabs", std::to_string(n_slabs)},
-      {"solver.type", solver_type},
-      {"solver.reuse_factorization", reuse_factorization ? "true" : "false"},
-      {"solver.auto_threshold", num(solver_auto_threshold)},
-      {"solver.auto_memory_mb", num(solver_auto_memory_mb)},
-      {"solver.krylov", krylov},
-      {"solver.preconditioner", preconditioner},
-      {"solver.tolerance", num(solver_tolerance)},
-      {"solver.restart", std::to_string(restart)},
-      {"solver.max_iterations", std::to_string(max_iterations)},
-      {"solver.ilu_fill", num(ilu_fill)},
-      {"solver.spatial_preconditioner", spatial_preconditioner},
-      {"solver.amg_smoother", amg_smoother},
-      {"solver.stagnation_window", std::to_string(stagnation_window)},
-      {"solver.stagnation_factor", num(stagnation_factor)},
-      {"solver.fallback", fallback},
-      {"solver.dof_numbering", dof_numbering},
-      {"study.mode", mode},
-      {"study.refine", refine},
-      {"study.levels", std::to_string(levels)},
-      {"goal.kind", goal_kind},
-      {"goal.locations", goal_locations},
-      {"goal.over_time", goal_over_time ? "true" : "false"},
-      {"goal.radius", num(goal_radius)},
-      {"goal.weights", goal_weights},
-      {"adaptivity.mode", adaptivity_mode},
-      {"adaptivity.marking", marking},
-      {"adaptivity.kappa", num(kappa)},
-      {"adaptivity.loops", std::to_string(loops)},
-      {"adaptivity.theta_h", num(theta_h)},
-      {"adaptivity.theta_tau", num(theta_tau)},
-      {"adaptivity.theta_coarsen", num(theta_coarsen)},
-      {"adaptivity.tolerance", num(tolerance)},
-      {"adaptivity.max_dofs", num(max_dofs)},
-      {"adaptivity.max_memory_mb", num(max_memory_mb)},
-      {"adaptivity.max_wall_time", num(max_wall_time)},
-      {"adaptivity.adjoint_degree", std::to_string(adjoint_degree)},
-      {"adaptivity.adjoint_stabilization", adjoint_stabilization},
-      {"adaptivity.space_indicator", space_indicator},
-      {"adaptivity.measure_time_error", measure_time_error ? "true" : "false"},
-      {"adaptivity.time_indicator", time_indicator},
-      {"adaptivity.per_goal_estimates", per_goal_estimates ? "true" : "false"},
-      {"output.vtu_loops", std::to_string(vtu_loops)},
-      {"output.directory", output_directory},
-      {"output.vtu_every", std::to_string(vtu_every)},
-      {"output.progress", progress ? "true" : "false"}};
-  return format(v, false, indent);
+  std::map<std::string, std::string> values;
+  for (const auto &e : entries())
+    values[e.name()] = e.member.get(*this);
+  return format(values, false, indent);
 }
 } // namespace anisodwr

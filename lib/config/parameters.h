@@ -1,9 +1,17 @@
 #pragma once
-// Typed, validated run parameters, read from a JSON config.
+// Typed, validated run parameters, read from a JSON config: one struct per section of
+// the config, one member per key (prm.<section>.<key>).
 //
-// Every key is declared once (parameters.cc: the entry table) with its default,
-// its pattern and its documentation. `anisodwr defaults` prints that table as a
-// loadable JSON file in which "#key" entries hold the documentation.
+// Every key is declared once, in the entry table (parameter_table.cc), which binds its
+// name, default, pattern and documentation to its member; reading, `anisodwr defaults`,
+// to_json and the unknown-key errors all come from that table. Choice-valued keys are
+// enums with one name table each (config/choice.h). The member initializers below
+// equal the table's defaults (checked by test_parameters).
+#include "adaptivity/choices.h"
+#include "config/choice.h"
+#include "goal/goal_spec.h"
+#include "scene/scene_name.h"
+
 #include <iosfwd>
 #include <map>
 #include <string>
@@ -11,31 +19,84 @@
 
 namespace anisodwr
 {
-struct Parameters
+/// discretization.supg_length: the cell length h_K in delta_K = delta0 h_K.
+enum class SupgLength
 {
-  // [scene]
-  std::string scene = "moving_hump";
+  volume,    ///< |K|^(1/d)
+  streamline ///< the length of K along b at its centre
+};
+
+inline const std::vector<Named<SupgLength>> &names(SupgLength)
+{
+  static const std::vector<Named<SupgLength>> table{
+      {SupgLength::volume, "volume"}, {SupgLength::streamline, "streamline"}};
+  return table;
+}
+
+/// study.mode
+enum class StudyMode
+{
+  single,      ///< one primal run
+  convergence, ///< uniform refinement over study.levels levels
+  dwr          ///< the adaptive DWR loop
+};
+
+inline const std::vector<Named<StudyMode>> &names(StudyMode)
+{
+  static const std::vector<Named<StudyMode>> table{
+      {StudyMode::single, "single"},
+      {StudyMode::convergence, "convergence"},
+      {StudyMode::dwr, "dwr"}};
+  return table;
+}
+
+/// study.refine: what a convergence study refines per level.
+enum class StudyRefine
+{
+  space,
+  time,
+  both
+};
+
+inline const std::vector<Named<StudyRefine>> &names(StudyRefine)
+{
+  static const std::vector<Named<StudyRefine>> table{{StudyRefine::space, "space"},
+                                                     {StudyRefine::time, "time"},
+                                                     {StudyRefine::both, "both"}};
+  return table;
+}
+
+struct SceneSection
+{
+  SceneName name = SceneName::moving_hump;
   std::string variant = "";
   double epsilon = 1e-6;
   double end_time = 0.5;
+};
 
-  // [discretization]
+struct DiscretizationSection
+{
   unsigned int p = 1;
   unsigned int r = 0;
   double delta0 = 1.0;
-  std::string supg_length = "volume";
+  SupgLength supg_length = SupgLength::volume;
   double supg_tau_factor = 1.;
   unsigned int initial_refinements = 2;
   unsigned int n_slabs = 5;
+};
 
-  // [solver]
-  std::string solver_type = "auto";
+/// The choices of this section stay text: they are handed on as such to
+/// SlabSolverOptions and IterativeOptions (slab/, solver/).
+struct SolverSection
+{
+  std::string type = "auto";
+  std::string dof_numbering = "native";
   bool reuse_factorization = true;
-  double solver_auto_threshold = 1e6;
-  double solver_auto_memory_mb = 0.; ///< 0: half the physical memory
+  double auto_threshold = 1e6;
+  double auto_memory_mb = 0.; ///< 0: half the physical memory
   std::string krylov = "gmres";
   std::string preconditioner = "kronecker_presb";
-  double solver_tolerance = 1e-10;
+  double tolerance = 1e-10;
   unsigned int restart = 30;
   unsigned int max_iterations = 500;
   double ilu_fill = 1.;
@@ -44,22 +105,28 @@ struct Parameters
   unsigned int stagnation_window = 50;
   double stagnation_factor = 10.;
   std::string fallback = "direct";
+};
 
-  // [study]
-  std::string mode = "single";
-  std::string refine = "both";
+struct StudySection
+{
+  StudyMode mode = StudyMode::single;
+  StudyRefine refine = StudyRefine::both;
   unsigned int levels = 4;
+};
 
-  // [goal]
-  std::string goal_kind = "scene";
-  std::string goal_locations = "";
-  bool goal_over_time = false;
-  double goal_radius = 0.01;
-  std::string goal_weights = "1";
+struct GoalSection
+{
+  GoalKind kind = GoalKind::scene;
+  std::string locations = "";
+  bool over_time = false;
+  double radius = 0.01;
+  std::string weights = "1";
+};
 
-  // [adaptivity]
-  std::string adaptivity_mode = "anisotropic";
-  std::string marking = "cell";
+struct AdaptivitySection
+{
+  AdaptivityMode mode = AdaptivityMode::anisotropic;
+  Marking marking = Marking::cell;
   double kappa = 0.75;
   unsigned int loops = 6;
   double theta_h = 0.25;
@@ -69,19 +136,31 @@ struct Parameters
   double max_dofs = 0.;
   double max_memory_mb = 0.;
   double max_wall_time = 0.; ///< s; 0: no budget
-  unsigned int adjoint_degree = 0;
-  std::string adjoint_stabilization = "transposed";
-  std::string space_indicator = "average";
-  std::string dof_numbering = "native";
-  bool measure_time_error = false;
-  std::string time_indicator = "average";
+  TimeIndicator time_indicator = TimeIndicator::average;
   bool per_goal_estimates = false;
+  bool measure_time_error = false;
+  unsigned int adjoint_degree = 0;
+  SpaceIndicator space_indicator = SpaceIndicator::average;
+  AdjointStabilization adjoint_stabilization = AdjointStabilization::transposed;
+};
 
-  // [output]
-  std::string output_directory = "results/moving_hump";
+struct OutputSection
+{
+  std::string directory = "results/moving_hump";
   unsigned int vtu_every = 1;
   bool progress = true;
   unsigned int vtu_loops = 1;
+};
+
+struct Parameters
+{
+  SceneSection scene;
+  DiscretizationSection discretization;
+  SolverSection solver;
+  StudySection study;
+  GoalSection goal;
+  AdaptivitySection adaptivity;
+  OutputSection output;
 
   /// Where each key's value came from: the config file's path, "--set" or "default".
   std::map<std::string, std::string> sources;

@@ -74,7 +74,7 @@ template <int dim> struct LocalGoal<dim>::Part
   /// per direction), 8 for a cell cut by a rectangle's edge, 1 inside it.
   unsigned int sub_cells(const typename Triangulation<dim>::active_cell_iterator &cell) const
   {
-    if (goal.kind == "point")
+    if (goal.kind == GoalKind::point)
     {
       const double n = std::ceil(16. * cell->diameter() / goal.radius);
       unsigned int k = 1;
@@ -101,7 +101,7 @@ template <int dim> struct LocalGoal<dim>::Part
 
   double density(const Point<dim> &x) const
   {
-    if (goal.kind == "point")
+    if (goal.kind == GoalKind::point)
       return mollifier(x, c, goal.radius, C);
     for (unsigned int d = 0; d < dim; ++d)
       if (x[d] < lo[d] || x[d] > hi[d])
@@ -110,7 +110,7 @@ template <int dim> struct LocalGoal<dim>::Part
   }
   bool meets(const typename Triangulation<dim>::active_cell_iterator &cell) const
   {
-    if (goal.kind == "point")
+    if (goal.kind == GoalKind::point)
       return cell->center().distance(c) <= goal.radius + cell->diameter();
     for (unsigned int d = 0; d < dim; ++d)
     {
@@ -139,7 +139,7 @@ LocalGoal<dim>::LocalGoal(const Mapping<dim> &mapping, const FiniteElement<dim> 
       continue;
     auto part = std::make_shared<Part>();
     part->goal = goal;
-    if (goal.kind == "point")
+    if (goal.kind == GoalKind::point)
     {
       part->c = to_point<dim>(goal, goal.center);
       if (goal.radius == 0.)
@@ -153,7 +153,7 @@ LocalGoal<dim>::LocalGoal(const Mapping<dim> &mapping, const FiniteElement<dim> 
       else
         part->C = mollifier_constant(dim, goal.radius);
     }
-    else if (goal.kind == "mean")
+    else if (goal.kind == GoalKind::mean)
     {
       part->lo = to_point<dim>(goal, goal.lower);
       part->hi = to_point<dim>(goal, goal.upper);
@@ -163,7 +163,7 @@ LocalGoal<dim>::LocalGoal(const Mapping<dim> &mapping, const FiniteElement<dim> 
         throw InputError("goal '" + goal.name + "': the rectangle has no area");
     }
     else
-      throw InputError("goal '" + goal.name + "': unknown kind '" + goal.kind +
+      throw InputError("goal '" + goal.name + "': unknown kind '" + name(goal.kind) +
                        "'; expected point or mean");
     parts.push_back(part);
   }
@@ -518,7 +518,7 @@ double exact_goal(const Scene<dim> &scene, const GoalSpec &goal, double tol)
   auto inner = [&](const auto &f, double a, double b) { return nested.inner(f, a, b); };
   auto spatial = [&](double t) -> double
   {
-    if (goal.kind == "point")
+    if (goal.kind == GoalKind::point)
     {
       const Point<dim> c = to_point<dim>(goal, goal.center);
       if (goal.radius == 0.)

@@ -56,21 +56,21 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
 {
   const std::string where = in.locations_source;
   std::vector<GoalSpec> goals;
-  if (in.kind == "scene")
+  if (in.kind == GoalKind::scene)
     goals = scene.default_goals(in.radius);
   else
   {
     const auto items = split(in.locations, ';');
     if (in.locations.empty() || items.empty())
-      throw InputError(where + ": key 'goal.locations' is empty; goal.kind = " + in.kind +
-                       " needs at least one location");
+      throw InputError(where + ": key 'goal.locations' is empty; goal.kind = " +
+                       name(in.kind) + " needs at least one location");
     for (std::size_t i = 0; i < items.size(); ++i)
     {
       GoalSpec g;
       g.kind = in.kind;
       g.over_time = in.over_time;
-      g.name = in.kind + "_" + std::to_string(i + 1);
-      if (g.kind == "point")
+      g.name = name(in.kind) + "_" + std::to_string(i + 1);
+      if (g.kind == GoalKind::point)
       {
         g.center = numbers(items[i], "goal.locations", 2, where);
         g.radius = in.radius;
@@ -101,7 +101,7 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
   const auto box = scene.bounding_box();
   const double diameter = box[0].distance(box[1]);
   for (const auto &g : goals)
-    if (g.kind == "point" && !(g.radius <= diameter))
+    if (g.kind == GoalKind::point && !(g.radius <= diameter))
       throw InputError(in.radius_source + ": invalid value '" + json_number(g.radius, 6) +
                        "' for key 'goal.radius'; expected a number >= 0 and at most the "
                        "diameter " +

@@ -13,7 +13,7 @@ namespace anisodwr
 /// and goal.weights came from (a config file's path, "--set" or "default").
 struct GoalInput
 {
-  std::string kind = "scene"; ///< scene | point | mean
+  GoalKind kind = GoalKind::scene;
   std::string locations = ""; ///< "x,y; ..." (point) or "x0,y0,x1,y1; ..." (mean)
   bool over_time = false;
   double radius = 0.01;

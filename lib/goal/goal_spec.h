@@ -1,15 +1,31 @@
 #pragma once
 // The description of one goal functional (SPEC §3), as read from the config.
+#include "config/choice.h"
+
 #include <string>
 #include <vector>
 
 namespace anisodwr
 {
+/// goal.kind, and the kind of one goal (point or mean).
+enum class GoalKind
+{
+  scene, ///< goal.kind only: the scene's own goals
+  point, ///< mollified point value (s = 0: Dirac)
+  mean   ///< mean over a rectangle
+};
+
+inline const std::vector<Named<GoalKind>> &names(GoalKind)
+{
+  static const std::vector<Named<GoalKind>> table{
+      {GoalKind::scene, "scene"}, {GoalKind::point, "point"}, {GoalKind::mean, "mean"}};
+  return table;
+}
+
 struct GoalSpec
 {
   std::string name;
-  std::string kind =
-      "point";            ///< point (mollified, s = 0: Dirac) or mean (over a rectangle)
+  GoalKind kind = GoalKind::point; ///< point or mean
   bool over_time = false; ///< true: int_I j(u(t)) dt; false: j(u(T))
   std::vector<double> center;       ///< point goals
   double radius = 0;                ///< mollifier radius s

@@ -81,21 +81,25 @@ template <int dim> std::unique_ptr<Scene<dim>> create_scene(const SceneOptions &
   std::unique_ptr<Scene<dim>> scene;
   try
   {
-  if (o.name == "moving_hump")
-    scene = std::make_unique<MovingHump>(o.epsilon, o.variant);
-  else if (o.name == "manufactured")
-    scene = std::make_unique<Manufactured>(o.epsilon, o.variant);
-  else if (o.name == "heat")
-    scene = std::make_unique<Heat>(o.epsilon, o.variant);
-  else if (o.name == "boundary_layer")
-    scene = std::make_unique<BoundaryLayer>(o.epsilon, o.variant);
-  else if (o.name == "hemker")
-    scene = std::make_unique<Hemker>(o.epsilon, o.variant);
-  else
-    throw InputError(o.name_source + ": invalid value '" + o.name +
-                     "' for key 'scene.name'; expected moving_hump, manufactured, heat, "
-                     "boundary_layer or hemker");
-  scene->end_time = o.end_time;
+    switch (o.name)
+    {
+    case SceneName::moving_hump:
+      scene = std::make_unique<MovingHump>(o.epsilon, o.variant);
+      break;
+    case SceneName::manufactured:
+      scene = std::make_unique<Manufactured>(o.epsilon, o.variant);
+      break;
+    case SceneName::heat:
+      scene = std::make_unique<Heat>(o.epsilon, o.variant);
+      break;
+    case SceneName::boundary_layer:
+      scene = std::make_unique<BoundaryLayer>(o.epsilon, o.variant);
+      break;
+    case SceneName::hemker:
+      scene = std::make_unique<Hemker>(o.epsilon, o.variant);
+      break;
+    }
+    scene->end_time = o.end_time;
   }
   catch (const InputError &e)
   {

@@ -6,6 +6,7 @@
 #include <deal.II/base/types.h>
 
 #include "goal/goal_spec.h"
+#include "scene/scene_name.h"
 
 #include <array>
 #include <limits>
@@ -20,15 +21,15 @@ template <int dim, int spacedim> class Triangulation;
 
 namespace anisodwr
 {
-/// The scene section of a config and, for messages, where scene.name and
-/// scene.variant came from (a config file's path, "--set" or "default").
+/// The scene section of a config and, for messages, where scene.variant came from (a
+/// config file's path, "--set" or "default").
 struct SceneOptions
 {
-  std::string name = "moving_hump";
+  SceneName name = SceneName::moving_hump;
   std::string variant = "";
   double epsilon = 1e-6;
   double end_time = 0.5;
-  std::string name_source = "default", variant_source = "default";
+  std::string variant_source = "default";
 };
 
 /// Exact solution with analytic derivatives (no finite differences).
@@ -121,6 +122,6 @@ protected:
   std::unique_ptr<ExactSolution<dim>> exact_solution;
 };
 
-/// Builds the scene named in the options; InputError on an unknown name/variant.
+/// Builds the scene named in the options; InputError on an unknown variant.
 template <int dim> std::unique_ptr<Scene<dim>> create_scene(const SceneOptions &options);
 } // namespace anisodwr

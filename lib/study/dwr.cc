@@ -42,20 +42,6 @@ double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &m
   return evaluate_goal(assemble_goal_vectors(space, {unweighted(goal)}), mesh, basis, U);
 }
 
-SpaceIndicator space_indicator(const Parameters &prm)
-{
-  return prm.space_indicator == "primal_residual" ? SpaceIndicator::primal_residual
-                                                  : SpaceIndicator::average;
-}
-
-TimeIndicator time_indicator(const Parameters &prm)
-{
-  if (prm.time_indicator == "average")
-    return TimeIndicator::average;
-  return prm.time_indicator == "adjoint_residual" ? TimeIndicator::adjoint_residual
-                                                  : TimeIndicator::higher_order;
-}
-
 /// The temporal part of the goal error on the current spatial mesh, measured: the
 /// primal is solved again on the time mesh bisected once and twice; with
 /// d1 = J(2N) - J(N), d2 = J(4N) - J(2N) and the observed order k = log2(d1 / d2),
@@ -150,17 +136,6 @@ private:
   Timer wall;
 };
 
-MarkingOptions marking_options(const Parameters &prm)
-{
-  MarkingOptions marking;
-  marking.mode = prm.adaptivity_mode;
-  marking.theta_h = prm.theta_h;
-  marking.marking = prm.marking;
-  marking.theta_coarsen = prm.theta_coarsen;
-  marking.kappa = prm.kappa;
-  return marking;
-}
-
 std::vector<std::string> goal_names(const std::vector<GoalSpec> &goals)
 {
   std::vector<std::string> names;
@@ -182,27 +157,28 @@ std::vector<std::string> probe_columns(const std::vector<GoalSpec> &goals)
 /// The scene of the run, with the output directory created first.
 std::unique_ptr<Scene<2>> scene_in_directory(const Parameters &prm)
 {
-  make_directory(prm.output_directory);
+  make_directory(prm.output.directory);
   return create_scene<2>(prm);
 }
 
 AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
     : prm(prm), scene(scene_in_directory(prm)),
       goals(make_goals(goal_input(prm), *scene)),
-      auto_weights(prm.goal_weights == "auto"), has_exact(scene->exact() != nullptr),
+      auto_weights(prm.goal.weights == "auto"), has_exact(scene->exact() != nullptr),
       J_exact(goals.size(), nan), marking(marking_options(prm)),
-      tria(tria_smoothing<2>(marking)), basis(prm.r),
-      q(prm.adjoint_degree ? prm.adjoint_degree : 2 * prm.p)
+      tria(tria_smoothing<2>(marking)), basis(prm.discretization.r),
+      q(prm.adaptivity.adjoint_degree ? prm.adaptivity.adjoint_degree
+                                      : 2 * prm.discretization.p)
 {
   if (has_exact)
     for (std::size_t g = 0; g < goals.size(); ++g)
       J_exact[g] = exact_goal(*scene, goals[g]);
   scene->make_coarse_grid(tria);
-  tria.refine_global(prm.initial_refinements);
-  mesh = TimeMesh::uniform(scene->end_time, prm.n_slabs);
-  table = std::make_unique<CsvTable>(prm.output_directory + "/loops.csv",
+  tria.refine_global(prm.discretization.initial_refinements);
+  mesh = TimeMesh::uniform(scene->end_time, prm.discretization.n_slabs);
+  table = std::make_unique<CsvTable>(prm.output.directory + "/loops.csv",
                                      loop_columns(goal_names(goals)));
-  probe_table = std::make_unique<CsvTable>(prm.output_directory + "/probes.csv",
+  probe_table = std::make_unique<CsvTable>(prm.output.directory + "/probes.csv",
                                            probe_columns(goals));
   probe_spec = scene->probes();
   base_mb = resident_memory_mb();
@@ -213,16 +189,16 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
 void AdaptiveLoop::run()
 {
   summary("running", "", 0.);
-  std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.p << ")-dG("
-            << prm.r << "), adjoint cG(" << q << "), " << prm.adaptivity_mode
-            << ", goals:";
+  std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.discretization.p
+            << ")-dG(" << prm.discretization.r << "), adjoint cG(" << q << "), "
+            << name(prm.adaptivity.mode) << ", goals:";
   for (std::size_t g = 0; g < goals.size(); ++g)
     std::cout << " " << goals[g].name << (has_exact ? " = " + num(J_exact[g]) : "");
   std::cout << "\n";
   print_loop_header(std::cout);
   try
   {
-    for (unsigned int loop = 1; loop <= prm.loops; ++loop)
+    for (unsigned int loop = 1; loop <= prm.adaptivity.loops; ++loop)
     {
       LoopRow row;
       row.loop = loop;
@@ -236,7 +212,7 @@ void AdaptiveLoop::run()
         const MarkingStats m = mark_cells(tria, ind, marking);
         row.marking = {{m.marked, m.cut_x, m.cut_y, m.cut_both, m.closure}};
         tria.execute_coarsening_and_refinement();
-        mesh = refine_time(mesh, ind.eta_tau_slab, prm.theta_tau);
+        mesh = refine_time(mesh, ind.eta_tau_slab, prm.adaptivity.theta_tau);
         row.t_refine = t.wall_time();
       }
       row.mem = peak_memory_mb();
@@ -259,24 +235,21 @@ void AdaptiveLoop::run()
     throw;
   }
   summary("ok", stop_reason, wall.wall_time());
-  std::cout << "tables: " << table->path() << ", " << prm.output_directory << "/loops.tex"
+  std::cout << "tables: " << table->path() << ", " << prm.output.directory << "/loops.tex"
             << " (stopped: " << stop_reason << ")\n";
 }
 
 bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
 {
-  Space<2> primal(*scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline",
-                  prm.supg_tau_factor);
-  primal.set_downstream_numbering(prm.dof_numbering == "downstream");
-  primal.setup();
-  Space<2> adjoint(*scene, tria, q, prm.adjoint_stabilization == "none" ? 0. : prm.delta0,
-                   prm.supg_length == "streamline", prm.supg_tau_factor);
-  adjoint.set_downstream_numbering(prm.dof_numbering == "downstream");
-  adjoint.setup();
+  const auto primal_space = make_space(prm, *scene, tria, prm.discretization.p);
+  const auto adjoint_space =
+      make_space(prm, *scene, tria, q,
+                 prm.adaptivity.adjoint_stabilization != AdjointStabilization::none);
+  const Space<2> &primal = *primal_space, &adjoint = *adjoint_space;
   row.n_space = primal.n_dofs();
   row.n_t = mesh.n_slabs();
   row.n_tot = row.n_space * row.n_t * basis.n_dofs();
-  if (prm.max_dofs > 0 && row.n_tot > prm.max_dofs)
+  if (prm.adaptivity.max_dofs > 0 && row.n_tot > prm.adaptivity.max_dofs)
   {
     stop_reason = "DoF budget: loop " + std::to_string(row.loop) +
                   " would have N_tot = " + std::to_string(std::size_t(row.n_tot)) +
@@ -297,9 +270,9 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
     row.lu_primal_mb = op.timings().factor_mb;
   }
   // the dG(r+1) primal of time_indicator = higher_order
-  const TemporalBasis basis_hi(prm.r + 1);
+  const TemporalBasis basis_hi(prm.discretization.r + 1);
   std::vector<Vector<double>> U_hi;
-  if (time_indicator(prm) == TimeIndicator::higher_order)
+  if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)
   {
     SlabOperator<2> op(primal, basis_hi, slab_solver_options(prm));
     U_hi = march_primal(primal, mesh, basis_hi, op, opt);
@@ -309,7 +282,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   row.t_primal = t.wall_time();
 
   evaluate_goals(row, primal, U);
-  if (prm.measure_time_error)
+  if (prm.adaptivity.measure_time_error)
     std::tie(row.err_tau, row.err_tau_order) = measure_time_error(
         primal, mesh, basis, slab_solver_options(prm), goals, row.J, opt);
 
@@ -322,21 +295,21 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   row.lu_adjoint_mb = opq.timings().factor_mb;
 
   t.restart();
-  ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, time_indicator(prm), hi_ptr,
-                 space_indicator(prm));
+  ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, prm.adaptivity.time_indicator,
+                 hi_ptr, prm.adaptivity.space_indicator);
   row.t_estimate = t.wall_time();
   for (double e : ind.eta_tau_slab)
     if (!std::isfinite(e))
       throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
-  if (prm.per_goal_estimates)
+  if (prm.adaptivity.per_goal_estimates)
     for (const auto &goal : goals)
     {
       const GoalSpec g = unweighted(goal);
       const auto Zg = march_adjoint(adjoint, mesh, basis, opq,
                                     assemble_goal_vectors(adjoint, {g}), opt);
       const auto ig =
-          estimate(primal, adjoint, mesh, basis, U, Zg, {g}, time_indicator(prm), hi_ptr,
-                   space_indicator(prm));
+          estimate(primal, adjoint, mesh, basis, U, Zg, {g},
+                   prm.adaptivity.time_indicator, hi_ptr, prm.adaptivity.space_indicator);
       row.eta_goal.push_back(ig.eta_h_total() + ig.eta_tau);
     }
   row.eta_h = ind.eta_h;
@@ -412,11 +385,12 @@ void AdaptiveLoop::write_loop_outputs(LoopRow &row, const Space<2> &primal,
   const unsigned int loop = row.loop;
   for (const auto &l : probe_spec.cut_lines)
     write_line_csv(
-        prm.output_directory + "/cut_" + l.name + "_loop-" +
+        prm.output.directory + "/cut_" + l.name + "_loop-" +
             Utilities::int_to_string(loop, 4) + ".csv",
         LineEvaluator<2>(primal.dof_handler(), primal.mapping(), uT, l.start, l.end),
-        2 * prm.p);
-  if (!(prm.vtu_loops > 0 && (loop % prm.vtu_loops == 0 || loop == prm.loops)))
+        2 * prm.discretization.p);
+  if (!(prm.output.vtu_loops > 0 &&
+        (loop % prm.output.vtu_loops == 0 || loop == prm.adaptivity.loops)))
     return;
   Vector<double> ex(ar_cell.size()), ey(ar_cell.size()), et(ar_cell.size()),
       ar(ar_cell.begin(), ar_cell.end());
@@ -428,23 +402,24 @@ void AdaptiveLoop::write_loop_outputs(LoopRow &row, const Space<2> &primal,
   }
   vtu_records.emplace_back(
       loop,
-      write_vtu(primal, uT, scene->end_time, prm.output_directory, "loop", loop,
+      write_vtu(primal, uT, scene->end_time, prm.output.directory, "loop", loop,
                 {{"eta_hx", ex}, {"eta_hy", ey}, {"eta_tau", et}, {"aspect_ratio", ar}}));
-  write_pvd(prm.output_directory, "loops", vtu_records);
+  write_pvd(prm.output.directory, "loops", vtu_records);
 }
 
 bool AdaptiveLoop::stop_after(const LoopRow &row)
 {
-  if (row.loop == prm.loops)
+  if (row.loop == prm.adaptivity.loops)
     return true;
-  if (prm.tolerance > 0 && std::abs(row.eta_h_total + row.eta_tau) < prm.tolerance)
+  if (prm.adaptivity.tolerance > 0 &&
+      std::abs(row.eta_h_total + row.eta_tau) < prm.adaptivity.tolerance)
   {
     stop_reason = "tolerance";
     return true;
   }
-  if (prm.max_wall_time > 0 &&
+  if (prm.adaptivity.max_wall_time > 0 &&
       wall.wall_time() + 2. * (row.t_primal + row.t_adjoint + row.t_estimate) >
-          prm.max_wall_time)
+          prm.adaptivity.max_wall_time)
   {
     stop_reason = "wall-time budget";
     return true;
@@ -463,7 +438,7 @@ void AdaptiveLoop::record(const LoopRow &row)
       v.push_back(field.second);
     probe_table->add_row(v);
   }
-  write_loops_latex(prm.output_directory + "/loops.tex", rows);
+  write_loops_latex(prm.output.directory + "/loops.tex", rows);
   summary("running", "", wall.wall_time());
   print_loop_row(std::cout, row);
 }
@@ -471,7 +446,7 @@ void AdaptiveLoop::record(const LoopRow &row)
 void AdaptiveLoop::summary(const std::string &status, const std::string &reason,
                            double wall_time, const std::string &details)
 {
-  write_summary(prm.output_directory + "/summary.json",
+  write_summary(prm.output.directory + "/summary.json",
                 {prm.to_json(2), goal_names(goals), solver_totals_json()}, rows, status,
                 reason, wall_time, details);
 }

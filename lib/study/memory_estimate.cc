@@ -99,9 +99,10 @@ double resident_memory_mb()
 
 MemoryLimit memory_limit(const Parameters &prm)
 {
-  if (prm.max_memory_mb > 0)
-    return {prm.max_memory_mb,
-            "adaptivity.max_memory_mb = " + json_number(prm.max_memory_mb, 6) + " MB"};
+  if (prm.adaptivity.max_memory_mb > 0)
+    return {prm.adaptivity.max_memory_mb,
+            "adaptivity.max_memory_mb = " + json_number(prm.adaptivity.max_memory_mb, 6) +
+                " MB"};
   const double phys = physical_memory_mb();
   return {phys, "the physical memory of " + json_number(std::round(phys), 8) +
                     " MB (adaptivity.max_memory_mb = 0)"};
@@ -123,21 +124,22 @@ MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
                          const Space<2> *adjoint, unsigned int n_slabs, double base_mb)
 {
   const SlabSolverOptions options = slab_solver_options(prm);
+  const unsigned int r = prm.discretization.r;
   MemoryModel m;
-  m.primal = slab_system(primal, options, prm.r);
+  m.primal = slab_system(primal, options, r);
   if (adjoint)
-    m.adjoint = slab_system(*adjoint, options, prm.r);
-  m.r = prm.r;
+    m.adjoint = slab_system(*adjoint, options, r);
+  m.r = r;
   m.n_slabs = n_slabs;
   m.time_dependent = primal.scene.coefficients_depend_on_time();
-  m.krylov_vectors = prm.restart + 2;
+  m.krylov_vectors = prm.solver.restart + 2;
   if (adjoint)
   {
-    m.adjoints_stored = prm.per_goal_estimates ? 2 : 1;
-    m.extra_primal_slabs = prm.measure_time_error ? 4 * n_slabs : 0;
+    m.adjoints_stored = prm.adaptivity.per_goal_estimates ? 2 : 1;
+    m.extra_primal_slabs = prm.adaptivity.measure_time_error ? 4 * n_slabs : 0;
     // time_indicator = higher_order keeps the dG(r+1) primal: (r+2)/(r+1) primal slabs each
-    if (prm.time_indicator == "higher_order")
-      m.extra_primal_slabs += (n_slabs * (prm.r + 2) + prm.r) / (prm.r + 1);
+    if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)
+      m.extra_primal_slabs += (n_slabs * (r + 2) + r) / (r + 1);
   }
   m.base_mb = base_mb;
   return m;

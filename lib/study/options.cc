@@ -1,15 +1,17 @@
 #include "study/options.h"
 
+#include "adaptivity/refinement.h"
+#include "space/space.h"
+
 namespace anisodwr
 {
 SceneOptions scene_options(const Parameters &prm)
 {
   SceneOptions o;
-  o.name = prm.scene;
-  o.variant = prm.variant;
-  o.epsilon = prm.epsilon;
-  o.end_time = prm.end_time;
-  o.name_source = prm.source("scene.name");
+  o.name = prm.scene.name;
+  o.variant = prm.scene.variant;
+  o.epsilon = prm.scene.epsilon;
+  o.end_time = prm.scene.end_time;
   o.variant_source = prm.source("scene.variant");
   return o;
 }
@@ -17,11 +19,11 @@ SceneOptions scene_options(const Parameters &prm)
 GoalInput goal_input(const Parameters &prm)
 {
   GoalInput in;
-  in.kind = prm.goal_kind;
-  in.locations = prm.goal_locations;
-  in.over_time = prm.goal_over_time;
-  in.radius = prm.goal_radius;
-  in.weights = prm.goal_weights;
+  in.kind = prm.goal.kind;
+  in.locations = prm.goal.locations;
+  in.over_time = prm.goal.over_time;
+  in.radius = prm.goal.radius;
+  in.weights = prm.goal.weights;
   in.locations_source = prm.source("goal.locations");
   in.radius_source = prm.source("goal.radius");
   in.weights_source = prm.source("goal.weights");
@@ -30,22 +32,47 @@ GoalInput goal_input(const Parameters &prm)
 
 SlabSolverOptions slab_solver_options(const Parameters &prm)
 {
+  const SolverSection &s = prm.solver;
   SlabSolverOptions o;
-  o.type = prm.solver_type;
-  o.reuse_factorization = prm.reuse_factorization;
-  o.auto_threshold = prm.solver_auto_threshold;
-  o.auto_memory_mb = prm.solver_auto_memory_mb;
-  o.fallback = prm.fallback;
-  o.iterative.krylov = prm.krylov;
-  o.iterative.preconditioner = prm.preconditioner;
-  o.iterative.tolerance = prm.solver_tolerance;
-  o.iterative.restart = prm.restart;
-  o.iterative.max_iterations = prm.max_iterations;
-  o.iterative.ilu_fill = prm.ilu_fill;
-  o.iterative.spatial_preconditioner = prm.spatial_preconditioner;
-  o.iterative.amg_smoother = prm.amg_smoother;
-  o.iterative.stagnation_window = prm.stagnation_window;
-  o.iterative.stagnation_factor = prm.stagnation_factor;
+  o.type = s.type;
+  o.reuse_factorization = s.reuse_factorization;
+  o.auto_threshold = s.auto_threshold;
+  o.auto_memory_mb = s.auto_memory_mb;
+  o.fallback = s.fallback;
+  o.iterative.krylov = s.krylov;
+  o.iterative.preconditioner = s.preconditioner;
+  o.iterative.tolerance = s.tolerance;
+  o.iterative.restart = s.restart;
+  o.iterative.max_iterations = s.max_iterations;
+  o.iterative.ilu_fill = s.ilu_fill;
+  o.iterative.spatial_preconditioner = s.spatial_preconditioner;
+  o.iterative.amg_smoother = s.amg_smoother;
+  o.iterative.stagnation_window = s.stagnation_window;
+  o.iterative.stagnation_factor = s.stagnation_factor;
   return o;
+}
+
+MarkingOptions marking_options(const Parameters &prm)
+{
+  MarkingOptions marking;
+  marking.mode = prm.adaptivity.mode;
+  marking.theta_h = prm.adaptivity.theta_h;
+  marking.marking = prm.adaptivity.marking;
+  marking.theta_coarsen = prm.adaptivity.theta_coarsen;
+  marking.kappa = prm.adaptivity.kappa;
+  return marking;
+}
+
+std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
+                                     const dealii::Triangulation<2, 2> &tria,
+                                     unsigned int degree, bool stabilized)
+{
+  const DiscretizationSection &d = prm.discretization;
+  auto space = std::make_unique<Space<2>>(scene, tria, degree, stabilized ? d.delta0 : 0.,
+                                          d.supg_length == SupgLength::streamline,
+                                          d.supg_tau_factor);
+  space->set_downstream_numbering(prm.solver.dof_numbering == "downstream");
+  space->setup();
+  return space;
 }
 } // namespace anisodwr

@@ -1,7 +1,7 @@
 #pragma once
 // The run parameters (config/parameters.h) as the options of the layers below study/:
 // the scene section for scene/, the goal section for goal/, the solver section for
-// slab/.
+// slab/, the adaptivity section for the marking, and the spaces of a run.
 #include "config/parameters.h"
 #include "goal/goal_input.h"
 #include "scene/scene.h"
@@ -11,6 +11,9 @@
 
 namespace anisodwr
 {
+template <int dim> class Space;
+struct MarkingOptions;
+
 /// The scene section of the run parameters.
 SceneOptions scene_options(const Parameters &prm);
 
@@ -25,4 +28,13 @@ GoalInput goal_input(const Parameters &prm);
 
 /// The solver section of the run parameters.
 SlabSolverOptions slab_solver_options(const Parameters &prm);
+
+/// The marking options of the adaptivity section.
+MarkingOptions marking_options(const Parameters &prm);
+
+/// The FE_Q(degree) space of a run on `tria`, set up: SUPG from the discretization
+/// section (delta0 = 0 if not `stabilized`), DoFs numbered as solver.dof_numbering says.
+std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
+                                     const dealii::Triangulation<2, 2> &tria,
+                                     unsigned int degree, bool stabilized = true);
 } // namespace anisodwr

@@ -78,20 +78,20 @@ LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned i
   Triangulation<2> tria;
   scene.make_coarse_grid(tria);
   tria.refine_global(refinements);
-  Space<2> space(scene, tria, prm.p, prm.delta0, prm.supg_length == "streamline",
-                         prm.supg_tau_factor);
-  space.set_downstream_numbering(prm.dof_numbering == "downstream");
-  space.setup();
+  const auto space_ptr = make_space(prm, scene, tria, prm.discretization.p);
+  const Space<2> &space = *space_ptr;
   const MemoryModel model = memory_model(prm, space, nullptr, n_slabs, base_mb);
   res.memory_estimate_mb = estimate_memory(model).total_mb;
-  check_memory(prm.mode == "convergence" ? "level " + std::to_string(level) : "run",
+  check_memory(prm.study.mode == StudyMode::convergence ? "level " + std::to_string(level)
+                                                        : "run",
                res.memory_estimate_mb, limit, model);
-  const TemporalBasis basis(prm.r);
+  const TemporalBasis basis(prm.discretization.r);
   const TimeMesh mesh = TimeMesh::uniform(scene.end_time, n_slabs);
   SlabOperator<2> op(space, basis, slab_solver_options(prm));
   MarchOptions opt;
-  opt.label = prm.mode == "convergence" ? "level " + std::to_string(level) : "run";
-  opt.progress = prm.progress;
+  opt.label =
+      prm.study.mode == StudyMode::convergence ? "level " + std::to_string(level) : "run";
+  opt.progress = prm.output.progress;
   const auto U = march_primal(space, mesh, basis, op, opt);
   res.t_total = timer.wall_time();
   res.slab = op.timings();
@@ -103,20 +103,20 @@ LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned i
   res.has_exact = scene.exact() != nullptr;
   if (res.has_exact)
     res.err = compute_errors(space, mesh, basis, U);
-  if (write_vtu_files && prm.vtu_every > 0)
+  if (write_vtu_files && prm.output.vtu_every > 0)
   {
     std::vector<std::pair<double, std::string>> records;
     Vector<double> u;
     for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
-      if ((n + 1) % prm.vtu_every == 0 || n + 1 == mesh.n_slabs())
+      if ((n + 1) % prm.output.vtu_every == 0 || n + 1 == mesh.n_slabs())
       {
         combine_blocks(U[n], basis.right_trace(), u);
         records.emplace_back(
             mesh.t[n + 1],
-            write_vtu(space, u, mesh.t[n + 1], prm.output_directory, "solution", n + 1));
+            write_vtu(space, u, mesh.t[n + 1], prm.output.directory, "solution", n + 1));
         res.vtu_files.push_back(records.back().second);
       }
-    write_pvd(prm.output_directory, "solution", records);
+    write_pvd(prm.output.directory, "solution", records);
   }
   return res;
 }
@@ -152,7 +152,7 @@ void write_summary(const Parameters &prm, const std::vector<LevelResult> &levels
                    const std::string &status, double wall,
                    const std::string &details = "", const std::string &stop_reason = "")
 {
-  const std::string path = prm.output_directory + "/summary.json";
+  const std::string path = prm.output.directory + "/summary.json";
   write_file_atomically(path,
                         summary_text(prm, levels, status, wall, details, stop_reason));
   // what a SIGINT/SIGTERM from now on leaves behind
@@ -162,7 +162,7 @@ void write_summary(const Parameters &prm, const std::vector<LevelResult> &levels
 
 void run_study(const Parameters &prm)
 {
-  make_directory(prm.output_directory);
+  make_directory(prm.output.directory);
   const auto scene = create_scene<2>(prm);
   Timer timer;
   const double base_mb = resident_memory_mb();
@@ -171,11 +171,10 @@ void run_study(const Parameters &prm)
   write_summary(prm, levels, "running", 0.);
   try
   {
-    if (prm.mode == "single")
+    if (prm.study.mode == StudyMode::single)
     {
-      levels.push_back(
-          solve_level(prm, *scene, 0, prm.initial_refinements, prm.n_slabs, true,
-                                  base_mb, limit));
+      levels.push_back(solve_level(prm, *scene, 0, prm.discretization.initial_refinements,
+                                   prm.discretization.n_slabs, true, base_mb, limit));
       const auto &r = levels.back();
       std::cout << "N_space = " << r.n_space << ", N_t = " << r.n_t
                 << ", N_tot = " << r.n_tot << ", wall time " << r.t_total << " s\n";
@@ -185,17 +184,17 @@ void run_study(const Parameters &prm)
     }
     else
     {
-      const bool space = prm.refine != "time", time = prm.refine != "space";
-      CsvTable table(prm.output_directory + "/convergence.csv",
+      const bool space = prm.study.refine != StudyRefine::time,
+                 time = prm.study.refine != StudyRefine::space;
+      CsvTable table(prm.output.directory + "/convergence.csv",
                      {"level", "h", "tau", "N_space", "N_t", "N_tot", "err_L2_T",
                       "err_nodal", "err_L2L2", "order_L2_T", "order_nodal", "order_L2L2",
                       "wall_time"});
-      for (unsigned int l = 0; l < prm.levels; ++l)
+      for (unsigned int l = 0; l < prm.study.levels; ++l)
       {
-        levels.push_back(solve_level(prm, *scene, l,
-                                     prm.initial_refinements + (space ? l : 0),
-                                     prm.n_slabs << (time ? l : 0), false, base_mb,
-                                     limit));
+        levels.push_back(solve_level(
+            prm, *scene, l, prm.discretization.initial_refinements + (space ? l : 0),
+            prm.discretization.n_slabs << (time ? l : 0), false, base_mb, limit));
         write_summary(prm, levels, "running", timer.wall_time());
         const auto &r = levels.back();
         std::array<double, 3> o{{nan, nan, nan}};

@@ -8,7 +8,7 @@
 namespace anisodwr
 {
 /// Runs what the parameters ask for and writes every output to
-/// prm.output_directory. Throws InputError / NumericalError; files written before a
+/// prm.output.directory. Throws InputError / NumericalError; files written before a
 /// failure stay on disk (tables are flushed row by row, summary.json records the error).
 void run_study(const Parameters &prm);
 } // namespace anisodwr

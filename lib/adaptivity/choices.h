@@ -1,0 +1,104 @@
+#pragma once
+// The choice-valued options of the adaptivity section (adaptivity.mode, .marking,
+// .time_indicator, .space_indicator, .adjoint_stabilization), each with its name table
+// (config/choice.h); light, so that config/parameters.h can hold them.
+#include "config/choice.h"
+
+namespace anisodwr
+{
+/// Which form of the temporal error representation eta_tau uses.
+enum class TimeIndicator
+{
+  /// 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u) (SPEC §5)
+  average,
+  /// rho*(u,z)(E u - u): the adjoint residual weighted by the primal's temporal error.
+  /// J(e) = rho*(u, z_tau h)(u - u_tau h) holds exactly for the discrete adjoint, so
+  /// only the primal has to be resolved in time; the primal-residual form needs
+  /// E z - z ~ z - z_tau h, which fails when the adjoint is a pulse crossing the
+  /// mollifier in a fraction of a slab (moving hump: |b| tau / s = 18).
+  adjoint_residual,
+  /// rho*(u,z)(u_r+1 - u) with u_r+1 the primal solved once more in dG(r+1) on the same
+  /// slabs and mesh (HigherOrderPrimal), including J_T's end part J_T(u_r+1(T) - u(T)).
+  /// The Radau reconstruction E u assumes dG(r)'s nodal superconvergence (E u - u = 0
+  /// at t_n), which a layer that crosses a slab destroys; u_r+1 does not. For q = p,
+  /// no SUPG and u_r+1 = u, eta_tau = J(u) - J(u_tau h) exactly.
+  higher_order
+};
+
+/// Which form of the spatial error representation eta_h,i uses.
+enum class SpaceIndicator
+{
+  /// 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - u) + S terms (SPEC §5); on a
+  /// (cell, direction) without a lift only the primal half
+  average,
+  /// rho(u)(z - R_i z) + S(u)(R_h z) share: the primal-residual form alone, which needs
+  /// no lift of u (exact up to z ~ z_tau h and the directional split)
+  primal_residual
+};
+
+inline const std::vector<Named<TimeIndicator>> &names(TimeIndicator)
+{
+  static const std::vector<Named<TimeIndicator>> table{
+      {TimeIndicator::average, "average"},
+      {TimeIndicator::adjoint_residual, "adjoint_residual"},
+      {TimeIndicator::higher_order, "higher_order"}};
+  return table;
+}
+
+inline const std::vector<Named<SpaceIndicator>> &names(SpaceIndicator)
+{
+  static const std::vector<Named<SpaceIndicator>> table{
+      {SpaceIndicator::average, "average"},
+      {SpaceIndicator::primal_residual, "primal_residual"}};
+  return table;
+}
+
+/// adaptivity.mode: how cells are marked and refined.
+enum class AdaptivityMode
+{
+  anisotropic, ///< mark per direction by |eta_h,i|
+  isotropic,   ///< mark by |eta_h|, refine isotropically
+  uniform      ///< refine every cell
+};
+
+inline const std::vector<Named<AdaptivityMode>> &names(AdaptivityMode)
+{
+  static const std::vector<Named<AdaptivityMode>> table{
+      {AdaptivityMode::anisotropic, "anisotropic"},
+      {AdaptivityMode::isotropic, "isotropic"},
+      {AdaptivityMode::uniform, "uniform"}};
+  return table;
+}
+
+/// adaptivity.marking: the anisotropic marking strategy (MarkingOptions::marking).
+enum class Marking
+{
+  joint,         ///< rank all (cell, direction) pairs together
+  per_direction, ///< the theta_h fraction of cells in each direction separately
+  cell           ///< mark cells by sum_i |eta_h,i^K|, cut where |eta_h,i^K| >= kappa max
+};
+
+inline const std::vector<Named<Marking>> &names(Marking)
+{
+  static const std::vector<Named<Marking>> table{
+      {Marking::joint, "joint"},
+      {Marking::per_direction, "per_direction"},
+      {Marking::cell, "cell"}};
+  return table;
+}
+
+/// adaptivity.adjoint_stabilization: the adjoint's discretization.
+enum class AdjointStabilization
+{
+  transposed, ///< the transpose of the SUPG-stabilized primal operator in degree q
+  none        ///< Galerkin (delta = 0) discretization of the continuous adjoint
+};
+
+inline const std::vector<Named<AdjointStabilization>> &names(AdjointStabilization)
+{
+  static const std::vector<Named<AdjointStabilization>> table{
+      {AdjointStabilization::transposed, "transposed"},
+      {AdjointStabilization::none, "none"}};
+  return table;
+}
+} // namespace anisodwr

@@ -1,0 +1,26 @@
+#pragma once
+// scene.name: the benchmark scenes (SCENES.md), with their name table.
+#include "config/choice.h"
+
+namespace anisodwr
+{
+enum class SceneName
+{
+  moving_hump,
+  manufactured,
+  heat,
+  boundary_layer,
+  hemker
+};
+
+inline const std::vector<Named<SceneName>> &names(SceneName)
+{
+  static const std::vector<Named<SceneName>> table{
+      {SceneName::moving_hump, "moving_hump"},
+      {SceneName::manufactured, "manufactured"},
+      {SceneName::heat, "heat"},
+      {SceneName::boundary_layer, "boundary_layer"},
+      {SceneName::hemker, "hemker"}};
+  return table;
+}
+} // namespace anisodwr
