@@ -10,13 +10,17 @@ namespace anisodwr
 {
 namespace
 {
-void check(const char *call, long status)
+/// Throws with a first line for the console and the details below it (summary.json).
+void check(const char *call, long status, std::size_t n, std::size_t nnz)
 {
-  if (status == UMFPACK_WARNING_singular_matrix)
-    throw std::runtime_error(std::string("UMFPACK: ") + call + ": the matrix is singular");
-  if (status != UMFPACK_OK)
-    throw std::runtime_error(std::string("UMFPACK: ") + call + " failed with status " +
-                             std::to_string(status));
+  if (status == UMFPACK_OK)
+    return;
+  const std::string what = status == UMFPACK_WARNING_singular_matrix
+                               ? ": the matrix is singular"
+                               : " failed with status " + std::to_string(status);
+  throw std::runtime_error(std::string("UMFPACK: ") + call + what + "\nUMFPACK status " +
+                           std::to_string(status) + " for a matrix of " + std::to_string(n) +
+                           " rows and " + std::to_string(nnz) + " stored entries");
 }
 
 double megabytes(const double *info, int entry)
@@ -72,8 +76,10 @@ const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double>
     Ap[i + 1] = start + long(row.size());
   }
   double info[UMFPACK_INFO];
-  check("umfpack_dl_symbolic", umfpack_dl_symbolic(long(n), long(n), Ap.data(), Ai.data(),
-                                                   Ax.data(), &symbolic, control, info));
+  check("umfpack_dl_symbolic",
+        umfpack_dl_symbolic(long(n), long(n), Ap.data(), Ai.data(), Ax.data(), &symbolic,
+                            control, info),
+        n, Ax.size());
   figures.predicted_peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY_ESTIMATE);
   figures.predicted_factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE_ESTIMATE);
   figures.predicted_flops = info[UMFPACK_FLOPS_ESTIMATE];
@@ -87,8 +93,9 @@ void DirectSolver::factorize()
   if (numeric)
     umfpack_dl_free_numeric(&numeric);
   double info[UMFPACK_INFO];
-  check("umfpack_dl_numeric", umfpack_dl_numeric(Ap.data(), Ai.data(), Ax.data(), symbolic,
-                                                 &numeric, control, info));
+  check("umfpack_dl_numeric",
+        umfpack_dl_numeric(Ap.data(), Ai.data(), Ax.data(), symbolic, &numeric, control, info),
+        Ap.size() - 1, Ax.size());
   figures.peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY);
   figures.factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE);
   figures.flops = info[UMFPACK_FLOPS];
@@ -107,6 +114,7 @@ void DirectSolver::solve(dealii::Vector<double> &x, bool transpose) const
   const dealii::Vector<double> b(x);
   check("umfpack_dl_solve",
         umfpack_dl_solve(transpose ? UMFPACK_A : UMFPACK_At, Ap.data(), Ai.data(), Ax.data(),
-                         x.begin(), b.begin(), numeric, control, nullptr));
+                         x.begin(), b.begin(), numeric, control, nullptr),
+        Ap.size() - 1, Ax.size());
 }
 } // namespace anisodwr
