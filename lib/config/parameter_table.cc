@@ -155,6 +155,10 @@ std::vector<Entry> solver_entries()
       {"solver", "reuse_factorization", "true", m(&S::reuse_factorization), boolean,
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
        "unchanged (same tau, coefficients constant in time)."},
+      {"solver", "refinement_steps", "0", m(&S::refinement_steps), integer(0, 10),
+       "Direct solves: UMFPACK's iterative refinement steps per solve (UMFPACK's own "
+       "default is 2). Each step costs a residual and a further solve; on the slab "
+       "systems the solution changes only in the last digits (doc/results.md)."},
       {"solver", "auto_threshold", "1e6", m(&S::auto_threshold), real(0.),
        "solver.type = auto with coefficients that depend on time (the factorization "
        "cannot be reused): iterative iff N_space (r+1)^2 (slab unknowns times the "

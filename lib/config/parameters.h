@@ -92,6 +92,7 @@ struct SolverSection
   std::string type = "auto";
   std::string dof_numbering = "native";
   bool reuse_factorization = true;
+  unsigned int refinement_steps = 0;
   double auto_threshold = 1e6;
   double auto_memory_mb = 0.; ///< 0: half the physical memory
   std::string krylov = "gmres";

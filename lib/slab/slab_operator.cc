@@ -93,7 +93,8 @@ bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsign
 template <int dim>
 SlabOperator<dim>::SlabOperator(const Space<dim> &space, const TemporalBasis &basis,
                                 const SlabSolverOptions &options)
-    : space(space), basis(basis), opt(options), reuse(options.reuse_factorization)
+    : space(space), basis(basis), opt(options), reuse(options.reuse_factorization),
+      lu(options.refinement_steps)
 {
   if (opt.type != "direct" && opt.type != "iterative" && opt.type != "auto")
     throw std::invalid_argument("solver.type must be direct, iterative or auto");

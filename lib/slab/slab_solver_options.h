@@ -11,6 +11,8 @@ struct SlabSolverOptions
 {
   std::string type = "direct"; ///< direct | iterative | auto
   bool reuse_factorization = true;
+  /// UMFPACK's iterative refinement steps per direct solve
+  unsigned int refinement_steps = 0;
   /// auto: UMFPACK while UMFPACK's symbolic analysis predicts a factorization peak of at
   /// most auto_memory_mb (0: half the physical memory); with coefficients that depend
   /// on time (a factorization per slab) iterative iff N_space (r+1)^2 >= auto_threshold.

@@ -29,10 +29,11 @@ double megabytes(const double *info, int entry)
 }
 } // namespace
 
-DirectSolver::DirectSolver()
+DirectSolver::DirectSolver(unsigned int refinement_steps)
 {
   static_assert(sizeof(control) / sizeof(double) == UMFPACK_CONTROL, "UMFPACK control size");
   umfpack_dl_defaults(control);
+  control[UMFPACK_IRSTEP] = refinement_steps;
 }
 
 DirectSolver::~DirectSolver() { clear(); }

@@ -23,7 +23,8 @@ struct DirectSolverInfo
 class DirectSolver
 {
 public:
-  DirectSolver();
+  /// `refinement_steps`: UMFPACK's iterative refinement steps per solve (its default: 2)
+  explicit DirectSolver(unsigned int refinement_steps = 2);
   ~DirectSolver();
   DirectSolver(const DirectSolver &) = delete;
   DirectSolver &operator=(const DirectSolver &) = delete;

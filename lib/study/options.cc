@@ -36,6 +36,7 @@ SlabSolverOptions slab_solver_options(const Parameters &prm)
   SlabSolverOptions o;
   o.type = s.type;
   o.reuse_factorization = s.reuse_factorization;
+  o.refinement_steps = s.refinement_steps;
   o.auto_threshold = s.auto_threshold;
   o.auto_memory_mb = s.auto_memory_mb;
   o.fallback = s.fallback;
