@@ -142,9 +142,10 @@ std::vector<Entry> solver_entries()
       {"solver", "type", "auto", m(&S::type), choice("direct|iterative|auto"),
        "Slab solver: direct (UMFPACK), iterative (Belos Krylov method solver.krylov "
        "with solver.preconditioner, Trilinos), or auto: UMFPACK while its predicted "
-       "factorization peak fits solver.auto_memory_mb, iterative otherwise; if the "
-       "coefficients depend on time (a factorization per slab), iterative from "
-       "N_space (r+1)^2 >= solver.auto_threshold. The choice and its reason are printed."},
+       "factorization peak fits solver.auto_memory_mb, iterative otherwise; with a "
+       "factorization per slab (coefficients that depend on time, or no reuse) also "
+       "iterative from N_space (r+1)^2 >= solver.auto_threshold. The choice and its "
+       "reason are printed when they change."},
       {"solver", "dof_numbering", "native", m(&S::dof_numbering),
        choice("native|downstream"),
        "Spatial DoF order: native (deal.II's cell-wise order) or downstream (sorted "
@@ -160,14 +161,15 @@ std::vector<Entry> solver_entries()
        "default is 2). Each step costs a residual and a further solve; on the slab "
        "systems the solution changes only in the last digits (doc/results.md)."},
       {"solver", "auto_threshold", "1e6", m(&S::auto_threshold), real(0.),
-       "solver.type = auto with coefficients that depend on time (the factorization "
-       "cannot be reused): iterative iff N_space (r+1)^2 (slab unknowns times the "
+       "solver.type = auto with a factorization per slab (coefficients that depend on "
+       "time, or no reuse): iterative if also N_space (r+1)^2 (slab unknowns times the "
        "temporal block size, which UMFPACK's cost follows) reaches this."},
       {"solver", "auto_memory_mb", "0", m(&S::auto_memory_mb), real(0.),
        "solver.type = auto: the largest predicted UMFPACK factorization peak (MB) solved "
-       "directly (predicted from the last measured factorization of the run, else from "
-       "a fit: about 1 kB per unknown for dG(0), 2 kB for dG(2)); 0 = half the physical "
-       "memory."},
+       "directly (extrapolated from the last measured factorization of the same degree "
+       "and r in the run, else from a fit: about 1 kB per unknown for dG(0), 2 kB for "
+       "dG(2)); 0 = half the physical memory. The budget covers UMFPACK's own peak only, "
+       "not the slab matrix or the stored solutions."},
       {"solver", "krylov", "gmres", m(&S::krylov), choice("gmres|fgmres|bicgstab"),
        "Iterative solver: gmres (restarted, right preconditioned), fgmres (flexible) or "
        "bicgstab (Belos)."},

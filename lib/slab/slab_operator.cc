@@ -35,7 +35,8 @@ std::string solver_totals_json()
 
 namespace
 {
-/// The last UMFPACK factorization measured per (degree, m): unknowns and peak (MB).
+/// The last UMFPACK factorization measured per (degree, m) in this process (not
+/// thread-safe): unknowns and peak (MB).
 std::map<std::pair<unsigned int, unsigned int>, std::pair<double, double>> lu_records;
 } // namespace
 
@@ -51,20 +52,23 @@ double fitted_lu_mb(double n, unsigned int degree, unsigned int m)
 
 double predicted_lu_mb(double n, unsigned int degree, unsigned int m)
 {
-  const auto record = lu_records.find({std::min(degree, 2u), m});
+  const auto record = lu_records.find({degree, m});
   if (record != lu_records.end())
   {
     // UMFPACK's peak per unknown of the last factorization, allowed to grow like log n
     const auto [n0, peak0] = record->second;
-    return 1.1 * peak0 * (n / n0) * std::max(1., std::log2(n) / std::log2(n0));
+    return 1.1 * peak0 * (n / n0) *
+           std::max(1., std::log2(std::max(n, 2.)) / std::log2(std::max(n0, 2.)));
   }
   return fitted_lu_mb(n, degree, m);
 }
 
 void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb)
 {
-  lu_records[{std::min(degree, 2u), m}] = {n, peak_mb};
+  lu_records[{degree, m}] = {n, peak_mb};
 }
+
+void reset_lu_records() { lu_records.clear(); }
 
 double auto_memory_budget_mb(const SlabSolverOptions &opt)
 {
@@ -121,9 +125,7 @@ void SlabOperator<dim>::factorize()
   if (!k_assembled)
     assemble_matrix();
   Timer timer;
-  if (!lu.analyzed())
-    lu.analyze(K);
-  lu.factorize();
+  lu.factorize(K);
   time.factorize += timer.wall_time();
   time.factor_mb = std::max(time.factor_mb, lu.info().factor_mb);
   time.factor_peak_mb = std::max(time.factor_peak_mb, lu.info().peak_mb);
@@ -140,7 +142,8 @@ void SlabOperator<dim>::choose_solver(bool factorization_reused)
   const double peak = predicted_lu_mb(n, space.degree(), m),
                budget = auto_memory_budget_mb(opt);
   use_iterative = auto_picks_iterative(opt, n, m, space.degree(), factorization_reused);
-  const std::string memory = "predicted UMFPACK peak " + std::to_string(long(std::ceil(peak))) +
+  const std::string memory = "predicted UMFPACK peak " +
+                             std::to_string(long(std::ceil(std::min(peak, 1e15)))) +
                              " MB, budget " + std::to_string(long(budget)) + " MB";
   if (!use_iterative)
     choice = "UMFPACK (" + memory + ")";
@@ -217,6 +220,7 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
   krylov[0].reset();
   krylov[1].reset();
   lu_valid = false;
+  factorized = false; // until the new K is factorized (or the Krylov path is set up)
   lu.clear();
   // The kronecker preconditioners work matrix-free: K is assembled only if needed.
   K.clear();
@@ -225,8 +229,7 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     choose_solver(constant && reuse);
   else
     use_iterative = opt.type == "iterative";
-  if ((!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative)) &&
-      !k_assembled)
+  if (!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative))
     assemble_matrix();
   if (!use_iterative)
     factorize();

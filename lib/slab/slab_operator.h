@@ -50,20 +50,23 @@ double physical_memory_mb();
 /// temporal DoFs per node as fitted to measured peaks (doc/results.md, "Slab solvers").
 double fitted_lu_mb(double n, unsigned int degree, unsigned int m);
 /// Predicted UMFPACK factorization peak (MB): extrapolated from the last factorization
-/// of the same degree and m in this process (record_lu), else fitted_lu_mb. UMFPACK's own symbolic bound is far too loose for
-/// this (33x at 2.4e5 unknowns).
+/// of the same degree and m in this process (record_lu), else fitted_lu_mb. UMFPACK's
+/// own symbolic bound is far too loose for this (33x at 2.4e5 unknowns).
 double predicted_lu_mb(double n, unsigned int degree, unsigned int m);
-/// Records a measured factorization peak for predicted_lu_mb (SlabOperator does).
+/// Records a measured factorization peak for predicted_lu_mb (SlabOperator does); the
+/// records are per process (not thread-safe). reset_lu_records forgets them (tests).
 void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb);
+void reset_lu_records();
 
 /// The memory a UMFPACK factorization may take under solver.type = auto (MB):
 /// solver.auto_memory_mb, or half the physical memory if that is 0.
 double auto_memory_budget_mb(const SlabSolverOptions &opt);
 
 /// Which solver solver.type = auto picks (true: iterative) for n slab unknowns with m
-/// temporal DoFs per node, given whether one factorization serves all slabs: UMFPACK
-/// while predicted_lu_mb fits auto_memory_budget_mb, except that with a factorization
-/// per slab sizes from N_space m^2 >= auto_threshold go to the iterative solver.
+/// temporal DoFs per node, given whether one factorization serves all slabs: iterative
+/// if predicted_lu_mb exceeds auto_memory_budget_mb, or if each slab needs its own
+/// factorization (time-dependent coefficients, reuse_factorization = false) and
+/// N_space m^2 >= auto_threshold; UMFPACK otherwise.
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused);
 
@@ -102,11 +105,14 @@ public:
              bool transpose = false);
 
   const SlabTimings &timings() const { return time; }
-  dealii::types::global_dof_index n_slab_dofs() const { return space.n_dofs() * basis.n_dofs(); }
+  dealii::types::global_dof_index n_slab_dofs() const
+  {
+    return space.n_dofs() * basis.n_dofs();
+  }
   /// True if the last prepare() chose the iterative path.
   bool iterative() const { return use_iterative; }
   /// solver.type = auto: the last prepare()'s choice and its reason, e.g. "UMFPACK
-  /// (predicted peak 812 MB <= budget 12288 MB)"; empty for direct and iterative.
+  /// (predicted UMFPACK peak 812 MB, budget 12052 MB)"; empty for direct and iterative.
   const std::string &auto_choice() const { return choice; }
   /// UMFPACK's figures of the last analysis and factorization.
   const DirectSolverInfo &direct_info() const { return lu.info(); }
@@ -132,8 +138,7 @@ private:
   bool lu_valid = false, k_assembled = false;
   void assemble_matrix();
   void factorize(); ///< assembles K first if the iterative path skipped it
-  /// solver.type = auto: sets use_iterative (analyzing K with UMFPACK if one
-  /// factorization would serve all slabs) and `choice`.
+  /// solver.type = auto: sets use_iterative (auto_picks_iterative) and `choice`.
   void choose_solver(bool factorization_reused);
   /// Krylov solve in place (rhs -> solution); returns the time spent on setup.
   double solve_iterative(dealii::Vector<double> &rhs, bool transpose);

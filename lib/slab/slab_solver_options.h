@@ -13,9 +13,10 @@ struct SlabSolverOptions
   bool reuse_factorization = true;
   /// UMFPACK's iterative refinement steps per direct solve
   unsigned int refinement_steps = 0;
-  /// auto: UMFPACK while UMFPACK's symbolic analysis predicts a factorization peak of at
-  /// most auto_memory_mb (0: half the physical memory); with coefficients that depend
-  /// on time (a factorization per slab) iterative iff N_space (r+1)^2 >= auto_threshold.
+  /// auto: UMFPACK while its predicted factorization peak (predicted_lu_mb) is at most
+  /// auto_memory_mb (0: half the physical memory); with a factorization per slab
+  /// (coefficients that depend on time, or no reuse) iterative from N_space (r+1)^2 >=
+  /// auto_threshold.
   double auto_threshold = 1e6;
   double auto_memory_mb = 0.;
   std::string fallback = "direct"; ///< none | direct

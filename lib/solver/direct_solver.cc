@@ -45,6 +45,12 @@ void DirectSolver::clear()
   if (symbolic)
     umfpack_dl_free_symbolic(&symbolic);
   numeric = symbolic = nullptr;
+  release_matrix();
+  figures = DirectSolverInfo();
+}
+
+void DirectSolver::release_matrix()
+{
   std::vector<long>().swap(Ap);
   std::vector<long>().swap(Ai);
   std::vector<double>().swap(Ax);
@@ -53,7 +59,6 @@ void DirectSolver::clear()
 const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double> &A)
 {
   clear();
-  figures = DirectSolverInfo();
   const auto n = A.m();
   Ap.assign(n + 1, 0);
   Ai.resize(A.n_nonzero_elements());
@@ -61,7 +66,7 @@ const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double>
   // Row-wise, column indices ascending (deal.II stores the diagonal first): UMFPACK
   // reads the rows as the columns of A^T.
   std::vector<std::pair<long, double>> row;
-  for (unsigned int i = 0; i < n; ++i)
+  for (dealii::types::global_dof_index i = 0; i < n; ++i)
   {
     row.clear();
     for (auto e = A.begin(i); e != A.end(i); ++e)
@@ -89,17 +94,23 @@ const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double>
 
 void DirectSolver::factorize()
 {
-  if (!symbolic)
+  if (!symbolic || Ap.empty())
     throw std::logic_error("DirectSolver::factorize before analyze");
   if (numeric)
     umfpack_dl_free_numeric(&numeric);
   double info[UMFPACK_INFO];
-  check("umfpack_dl_numeric",
-        umfpack_dl_numeric(Ap.data(), Ai.data(), Ax.data(), symbolic, &numeric, control, info),
-        Ap.size() - 1, Ax.size());
+  const long status =
+      umfpack_dl_numeric(Ap.data(), Ai.data(), Ax.data(), symbolic, &numeric, control, info);
+  if (status != UMFPACK_OK && numeric) // (a singular matrix still gets factors)
+    umfpack_dl_free_numeric(&numeric);
+  check("umfpack_dl_numeric", status, Ap.size() - 1, Ax.size());
   figures.peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY);
   figures.factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE);
   figures.flops = info[UMFPACK_FLOPS];
+  n_rows = Ap.size() - 1;
+  // Without iterative refinement the solves do not read A: its copy can go.
+  if (control[UMFPACK_IRSTEP] == 0)
+    release_matrix();
 }
 
 void DirectSolver::factorize(const dealii::SparseMatrix<double> &A)
@@ -112,10 +123,14 @@ void DirectSolver::solve(dealii::Vector<double> &x, bool transpose) const
 {
   if (!numeric)
     throw std::logic_error("DirectSolver::solve before factorize");
+  if (x.size() != n_rows)
+    throw std::invalid_argument("DirectSolver::solve: vector of size " +
+                                std::to_string(x.size()) + ", matrix of " +
+                                std::to_string(n_rows) + " rows");
   const dealii::Vector<double> b(x);
   check("umfpack_dl_solve",
         umfpack_dl_solve(transpose ? UMFPACK_A : UMFPACK_At, Ap.data(), Ai.data(), Ax.data(),
                          x.begin(), b.begin(), numeric, control, nullptr),
-        Ap.size() - 1, Ax.size());
+        n_rows, Ax.size());
 }
 } // namespace anisodwr

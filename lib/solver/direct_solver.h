@@ -1,7 +1,7 @@
 #pragma once
-// UMFPACK for a deal.II SparseMatrix with the analysis split from the factorization,
-// so that the memory and work of a factorization are known before it is computed:
-// solver.type = auto asks analyze() and factorizes only if the predicted peak fits.
+// UMFPACK for a deal.II SparseMatrix, with the analysis split from the factorization
+// and UMFPACK's figures (memory peak, factor size, flops) exposed: solver.type = auto
+// predicts the next factorization's peak from them (slab/slab_operator.h).
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -12,14 +12,17 @@ namespace anisodwr
 /// UMFPACK's own figures for one matrix (MB and floating-point operations).
 struct DirectSolverInfo
 {
-  /// after analyze(): upper bounds from the symbolic analysis
+  /// after analyze(): UMFPACK's upper bounds from the symbolic analysis (10-33x the
+  /// actual peak on slab matrices: doc/results.md)
   double predicted_peak_mb = 0, predicted_factor_mb = 0, predicted_flops = 0;
   /// after factorize(): the actual peak of the factorization and the size of the factors
   double peak_mb = 0, factor_mb = 0, flops = 0;
 };
 
-/// Same arithmetic as dealii::SparseDirectUMFPACK (UMFPACK's default control, the
-/// matrix passed row-wise so that UMFPACK factors A^T), hence identical solutions.
+/// With 2 refinement steps (UMFPACK's default) the same arithmetic as
+/// dealii::SparseDirectUMFPACK (the matrix passed row-wise, so that UMFPACK factors
+/// A^T), hence identical solutions. Without refinement the solves do not read A, and
+/// its copy is freed after the factorization.
 class DirectSolver
 {
 public:
@@ -40,14 +43,16 @@ public:
   bool analyzed() const { return symbolic != nullptr; }
   bool factorized() const { return numeric != nullptr; }
   const DirectSolverInfo &info() const { return figures; }
-  /// Frees the factors and the analysis.
+  /// Frees the factors, the analysis and the figures.
   void clear();
 
 private:
   std::vector<long> Ap, Ai;
   std::vector<double> Ax;
+  std::size_t n_rows = 0;
   double control[20];
   void *symbolic = nullptr, *numeric = nullptr;
   DirectSolverInfo figures;
+  void release_matrix();
 };
 } // namespace anisodwr

@@ -43,7 +43,7 @@ void add_operator(const SlabSystemSize &s, const MemoryModel &m, Phase &p)
   if (s.iterative)
     p.solver += 8. * m.krylov_vectors * n_k + precondition_bytes_per_nnz * nnz_k;
   else
-    // deal.II's copy (long indices, values) + the factors
+    // the copy UMFPACK factorizes (long indices, values) + the factors
     p.solver += 16 * nnz_k + 8 * n_k +
                 lu_bytes_per_nnz_log * nnz_k * std::log2(std::max(n_k, 2.));
 }
