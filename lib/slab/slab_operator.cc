@@ -128,7 +128,6 @@ void SlabOperator<dim>::factorize()
   lu.factorize(K);
   time.factorize += timer.wall_time();
   time.factor_mb = std::max(time.factor_mb, lu.info().factor_mb);
-  time.factor_peak_mb = std::max(time.factor_peak_mb, lu.info().peak_mb);
   record_lu(K.m(), space.degree(), basis.n_dofs(), lu.info().peak_mb);
   ++time.n_factorizations;
   lu_valid = true;

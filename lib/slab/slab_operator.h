@@ -27,8 +27,8 @@ struct SlabTimings
   /// Krylov solves, their total and largest iteration counts, and the number of
   /// failed Krylov solves replaced by UMFPACK (solver.fallback = direct).
   double precondition = 0;
-  /// UMFPACK: the largest factor size and factorization peak (MB, UMFPACK's figures)
-  double factor_mb = 0, factor_peak_mb = 0;
+  /// UMFPACK: the largest factor size (MB, UMFPACK's figure)
+  double factor_mb = 0;
   unsigned int n_preconditioners = 0, n_krylov_solves = 0, krylov_iterations = 0,
                max_krylov_iterations = 0, n_fallbacks = 0;
 };

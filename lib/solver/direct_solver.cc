@@ -88,7 +88,6 @@ const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double>
         n, Ax.size());
   figures.predicted_peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY_ESTIMATE);
   figures.predicted_factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE_ESTIMATE);
-  figures.predicted_flops = info[UMFPACK_FLOPS_ESTIMATE];
   return figures;
 }
 
@@ -106,7 +105,6 @@ void DirectSolver::factorize()
   check("umfpack_dl_numeric", status, Ap.size() - 1, Ax.size());
   figures.peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY);
   figures.factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE);
-  figures.flops = info[UMFPACK_FLOPS];
   n_rows = Ap.size() - 1;
   // Without iterative refinement the solves do not read A: its copy can go.
   if (control[UMFPACK_IRSTEP] == 0)

@@ -1,6 +1,6 @@
 #pragma once
 // UMFPACK for a deal.II SparseMatrix, with the analysis split from the factorization
-// and UMFPACK's figures (memory peak, factor size, flops) exposed: solver.type = auto
+// and UMFPACK's figures (memory peak, factor size) exposed: solver.type = auto
 // predicts the next factorization's peak from them (slab/slab_operator.h).
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -9,14 +9,14 @@
 
 namespace anisodwr
 {
-/// UMFPACK's own figures for one matrix (MB and floating-point operations).
+/// UMFPACK's own figures for one matrix (MB).
 struct DirectSolverInfo
 {
   /// after analyze(): UMFPACK's upper bounds from the symbolic analysis (10-33x the
   /// actual peak on slab matrices: doc/results.md)
-  double predicted_peak_mb = 0, predicted_factor_mb = 0, predicted_flops = 0;
+  double predicted_peak_mb = 0, predicted_factor_mb = 0;
   /// after factorize(): the actual peak of the factorization and the size of the factors
-  double peak_mb = 0, factor_mb = 0, flops = 0;
+  double peak_mb = 0, factor_mb = 0;
 };
 
 /// With 2 refinement steps (UMFPACK's default) the same arithmetic as
@@ -40,7 +40,6 @@ public:
   /// x := A^{-1} x, or A^{-T} x.
   void solve(dealii::Vector<double> &x, bool transpose = false) const;
 
-  bool analyzed() const { return symbolic != nullptr; }
   bool factorized() const { return numeric != nullptr; }
   const DirectSolverInfo &info() const { return figures; }
   /// Frees the factors, the analysis and the figures.

@@ -126,8 +126,8 @@ private:
   std::vector<std::pair<double, std::string>> vtu_records;
   std::string stop_reason = "max loops";
   /// solver.type = auto: the last choice printed per problem (primal, adjoint)
-  std::string auto_choice[2];
-  void report_auto_choice(unsigned int loop, unsigned int problem, const std::string &c);
+  int iterative_before[2] = {-1, -1};
+  void report_auto_choice(unsigned int loop, unsigned int problem, const SlabOperator<2> &op);
   /// the memory estimate: the process before the loops' data, the limit, and the last
   /// loop's measured/estimated peak (>= 1) that scales the next estimate
   double base_mb = 0;
@@ -266,7 +266,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
     // (the primal's factors are freed before the adjoint factorizes)
     SlabOperator<2> op(primal, basis, slab_solver_options(prm));
     U = march_primal(primal, mesh, basis, op, opt);
-    report_auto_choice(row.loop, 0, op.auto_choice());
+    report_auto_choice(row.loop, 0, op);
     row.lu_primal_mb = op.timings().factor_mb;
   }
   // the dG(r+1) primal of time_indicator = higher_order
@@ -291,7 +291,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   const auto Z = march_adjoint(adjoint, mesh, basis, opq,
                                assemble_goal_vectors(adjoint, goals), opt);
   row.t_adjoint = t.wall_time();
-  report_auto_choice(row.loop, 1, opq.auto_choice());
+  report_auto_choice(row.loop, 1, opq);
   row.lu_adjoint_mb = opq.timings().factor_mb;
 
   t.restart();
@@ -331,14 +331,14 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
 }
 
 void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
-                                      const std::string &c)
+                                      const SlabOperator<2> &op)
 {
-  // printed when the solver changes (first word), so that the table stays readable
-  if (c.empty() || c.substr(0, 8) == auto_choice[problem].substr(0, 8))
+  // printed when the solver changes, so that the table stays readable
+  if (op.auto_choice().empty() || int(op.iterative()) == iterative_before[problem])
     return;
-  auto_choice[problem] = c;
+  iterative_before[problem] = int(op.iterative());
   std::cout << "  loop " << loop << (problem ? " adjoint" : " primal")
-            << ", solver.type = auto: " << c << "\n";
+            << ", solver.type = auto: " << op.auto_choice() << "\n";
 }
 
 void AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
