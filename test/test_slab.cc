@@ -25,17 +25,30 @@ namespace
 class PolySolution : public ExactSolution<2>
 {
 public:
-  explicit PolySolution(unsigned int r) : r(r) {}
+  /// split: declare the product form (separable()), which loads and errors then use.
+  explicit PolySolution(unsigned int r, bool split = false) : r(r), split(split) {}
   double value(const Point<2> &p, double t) const override { return X(p) * T(t); }
   Tensor<1, 2> gradient(const Point<2> &p, double t) const override
   {
-    return Tensor<1, 2>({(1. + p[1]) * T(t), (4. * p[1] + p[0]) * T(t)});
+    return space_gradient(p) * T(t);
   }
   double laplacian(const Point<2> &, double t) const override { return 4. * T(t); }
   double time_derivative(const Point<2> &p, double t) const override { return X(p) * dT(t); }
+  bool separable() const override { return split; }
+  double time_factor(double t, unsigned int derivative) const override
+  {
+    return derivative == 0 ? T(t) : dT(t);
+  }
+  double space_value(const Point<2> &p) const override { return X(p); }
+  Tensor<1, 2> space_gradient(const Point<2> &p) const override
+  {
+    return Tensor<1, 2>({1. + p[1], 4. * p[1] + p[0]});
+  }
+  double space_laplacian(const Point<2> &) const override { return 4.; }
 
 private:
   unsigned int r;
+  bool split;
   static double X(const Point<2> &p) { return 1. + p[0] + 2. * p[1] * p[1] + p[0] * p[1]; }
   double T(double t) const
   {
@@ -76,6 +89,32 @@ public:
   }
   double reaction(const Point<2> &, double t) const override { return 1. + t; }
   bool coefficients_depend_on_time() const override { return true; }
+};
+
+/// Like PolyScene with b = (1, -0.5), alpha = 2 constant in time; `split` declares u
+/// separable, so that f is assembled from its space-time products.
+class ConstantCoefficientPolyScene : public Scene<2>
+{
+public:
+  ConstantCoefficientPolyScene(unsigned int r, double eps, bool split)
+  {
+    epsilon = eps;
+    end_time = 1.;
+    dirichlet_ids = {0, 2, 3};
+    neumann_ids = {1};
+    exact_solution = std::make_unique<PolySolution>(r, split);
+  }
+  std::string name() const override { return "poly_constant"; }
+  void make_coarse_grid(Triangulation<2> &tria) const override
+  {
+    GridGenerator::hyper_cube(tria, 0., 1., true);
+  }
+  Tensor<1, 2> convection(const Point<2> &, double) const override
+  {
+    return Tensor<1, 2>({1., -0.5});
+  }
+  double reaction(const Point<2> &, double) const override { return 2.; }
+  bool coefficients_depend_on_time() const override { return false; }
 };
 
 /// 2x2 mesh with one cell cut in x and one of its children cut in y: hanging nodes
@@ -226,6 +265,52 @@ TEST_P(ExactnessByDegree, PolynomialInTimeAndInFESpaceIsReproduced)
 }
 
 INSTANTIATE_TEST_SUITE_P(R, ExactnessByDegree, ::testing::Values(0u, 1u, 2u, 3u));
+
+// Loads of a separable f, assembled once per mesh and slab length from the products
+// a_j(t) g_j(x), equal the pointwise assembly of f(x, t_k) (SUPG with delta_K bounded
+// by tau, so the cached parts depend on the slab length; Neumann data on one side);
+// the errors of a separable exact solution equal those of the pointwise evaluation.
+TEST(Slab, SeparableLoadsAndErrorsEqualPointwiseEvaluation)
+{
+  const ConstantCoefficientPolyScene split(2, 0.05, true), pointwise(2, 0.05, false);
+  std::vector<LoadTerm<2>> terms;
+  ASSERT_TRUE(split.separable_rhs(terms));
+  EXPECT_EQ(terms.size(), 2u);
+  ASSERT_FALSE(pointwise.separable_rhs(terms));
+  Triangulation<2> tria;
+  make_mesh(split, tria);
+  tria.refine_global(1);
+  Space<2> a(split, tria, 2, 1.0, true, 0.5), b(pointwise, tria, 2, 1.0, true, 0.5);
+  a.setup();
+  b.setup();
+  ASSERT_TRUE(a.delta_depends_on_tau());
+  // two slab lengths (two cached entries), the first one again (a cache hit)
+  for (const auto &[times, tau] : std::vector<std::pair<std::vector<double>, double>>{
+           {{0.1, 0.3}, 0.4}, {{0.45, 0.55, 0.6}, 0.01}, {{0.7, 0.9}, 0.4}})
+  {
+    std::vector<Vector<double>> Fa, Fb;
+    a.assemble_loads(times, tau, Fa);
+    b.assemble_loads(times, tau, Fb);
+    ASSERT_EQ(Fa.size(), times.size());
+    for (std::size_t k = 0; k < times.size(); ++k)
+    {
+      Vector<double> d = Fa[k];
+      d -= Fb[k];
+      EXPECT_GT(Fb[k].l2_norm(), 1e-2);
+      EXPECT_LT(d.l2_norm(), 1e-13 * Fb[k].l2_norm()) << "t = " << times[k] << ", tau " << tau;
+    }
+  }
+  // errors of the dG(1) solution of a quadratic-in-time u (not exact: nonzero errors)
+  const TemporalBasis basis(1);
+  const TimeMesh mesh = TimeMesh::uniform(1.0, 3);
+  SlabOperator<2> op(a, basis, SlabSolverOptions::direct(true));
+  const auto U = march_primal(a, mesh, basis, op, MarchOptions{});
+  const ErrorNorms ea = compute_errors(a, mesh, basis, U), eb = compute_errors(b, mesh, basis, U);
+  EXPECT_GT(ea.L2L2, 1e-6);
+  EXPECT_NEAR(ea.L2L2, eb.L2L2, 1e-14 * eb.L2L2);
+  EXPECT_NEAR(ea.nodal, eb.nodal, 1e-14 * eb.nodal);
+  EXPECT_NEAR(ea.L2_T, eb.L2_T, 1e-14 * eb.L2_T);
+}
 
 // SUPG whose test function v + delta_K b.grad v also multiplies du/dt is stable only
 // for delta_K <~ tau_n (the term delta_K (u_t, b.grad u) is controlled by the SUPG

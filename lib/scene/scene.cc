@@ -24,6 +24,25 @@ template <int dim> double Scene<dim>::rhs(const dealii::Point<dim> &x, double t)
          convection(x, t) * u.gradient(x, t) + reaction(x, t) * u.value(x, t);
 }
 
+template <int dim>
+bool Scene<dim>::separable_rhs(std::vector<LoadTerm<dim>> &terms) const
+{
+  terms.clear();
+  const ExactSolution<dim> *u = exact();
+  if (!u || !u->separable() || coefficients_depend_on_time())
+    return false;
+  terms.push_back({[u](double t) { return u->time_factor(t, 1); },
+                   [u](const dealii::Point<dim> &x) { return u->space_value(x); }});
+  terms.push_back({[u](double t) { return u->time_factor(t, 0); },
+                   [this, u](const dealii::Point<dim> &x)
+                   {
+                     return -epsilon * u->space_laplacian(x) +
+                            convection(x, 0.) * u->space_gradient(x) +
+                            reaction(x, 0.) * u->space_value(x);
+                   }});
+  return true;
+}
+
 template <int dim> double Scene<dim>::initial_value(const dealii::Point<dim> &x) const
 {
   return require_exact(exact(), "initial_value()").value(x, 0.);

@@ -9,10 +9,13 @@
 #include "scene/scene_name.h"
 
 #include <array>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <set>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -42,6 +45,31 @@ public:
                                           double t) const = 0;
   virtual double laplacian(const dealii::Point<dim> &x, double t) const = 0;
   virtual double time_derivative(const dealii::Point<dim> &x, double t) const = 0;
+
+  /// True if u(x,t) = T(t) S(x); then time_factor() and the space_* functions give T,
+  /// T' and S, grad S, Lap S, so that loads and errors need S only once per mesh.
+  virtual bool separable() const { return false; }
+  /// T(t) (derivative 0) or T'(t) (derivative 1). Only if separable().
+  virtual double time_factor(double, unsigned int) const { throw not_separable(); }
+  virtual double space_value(const dealii::Point<dim> &) const { throw not_separable(); }
+  virtual dealii::Tensor<1, dim> space_gradient(const dealii::Point<dim> &) const
+  {
+    throw not_separable();
+  }
+  virtual double space_laplacian(const dealii::Point<dim> &) const { throw not_separable(); }
+
+private:
+  static std::logic_error not_separable()
+  {
+    return std::logic_error("ExactSolution: space/time factors of a non-separable solution");
+  }
+};
+
+/// One product a(t) g(x) of a load f(x,t) = sum_k a_k(t) g_k(x).
+template <int dim> struct LoadTerm
+{
+  std::function<double(double)> a;
+  std::function<double(const dealii::Point<dim> &)> g;
 };
 
 /// Derived outputs of u_h(T) a scene asks for (SCENES.md, hemker): cut lines sampled
@@ -85,6 +113,12 @@ public:
 
   /// Data. The defaults derive them from the exact solution.
   virtual double rhs(const dealii::Point<dim> &x, double t) const;
+  /// f as a sum of products a_k(t) g_k(x) (the loads are then assembled once per mesh
+  /// and combined per time); false if f is not known to be of that form. The default
+  /// derives f = T' S + T (-eps Lap S + b.grad S + alpha S) from a separable exact
+  /// solution when b and alpha do not depend on t. A scene that overrides rhs()
+  /// overrides this too.
+  virtual bool separable_rhs(std::vector<LoadTerm<dim>> &terms) const;
   virtual double initial_value(const dealii::Point<dim> &x) const;
   virtual double dirichlet_value(const dealii::Point<dim> &x, double t) const;
   /// eps grad u . n on the Neumann boundary.

@@ -180,21 +180,33 @@ void unit_square(dealii::Triangulation<2, 2> &tria)
 }
 } // namespace
 
+double SeparableSolution::space_value(const dealii::Point<2> &p) const
+{
+  return X.f(p[0]) * Y.f(p[1]);
+}
+dealii::Tensor<1, 2> SeparableSolution::space_gradient(const dealii::Point<2> &p) const
+{
+  dealii::Tensor<1, 2> g;
+  g[0] = X.df(p[0]) * Y.f(p[1]);
+  g[1] = X.f(p[0]) * Y.df(p[1]);
+  return g;
+}
+double SeparableSolution::space_laplacian(const dealii::Point<2> &p) const
+{
+  return X.ddf(p[0]) * Y.f(p[1]) + X.f(p[0]) * Y.ddf(p[1]);
+}
 double SeparableSolution::value(const dealii::Point<2> &p, double t) const
 {
-  return X.f(p[0]) * Y.f(p[1]) * T(t);
+  return space_value(p) * T(t);
 }
 dealii::Tensor<1, 2> SeparableSolution::gradient(const dealii::Point<2> &p,
                                                  double t) const
 {
-  dealii::Tensor<1, 2> g;
-  g[0] = X.df(p[0]) * Y.f(p[1]) * T(t);
-  g[1] = X.f(p[0]) * Y.df(p[1]) * T(t);
-  return g;
+  return space_gradient(p) * T(t);
 }
 double SeparableSolution::laplacian(const dealii::Point<2> &p, double t) const
 {
-  return (X.ddf(p[0]) * Y.f(p[1]) + X.f(p[0]) * Y.ddf(p[1])) * T(t);
+  return space_laplacian(p) * T(t);
 }
 double SeparableSolution::time_derivative(const dealii::Point<2> &p, double t) const
 {

@@ -92,6 +92,15 @@ public:
   double laplacian(const dealii::Point<2> &p, double t) const override;
   double time_derivative(const dealii::Point<2> &p, double t) const override;
 
+  bool separable() const override { return true; }
+  double time_factor(double t, unsigned int derivative) const override
+  {
+    return derivative == 0 ? T(t) : dT(t);
+  }
+  double space_value(const dealii::Point<2> &p) const override;
+  dealii::Tensor<1, 2> space_gradient(const dealii::Point<2> &p) const override;
+  double space_laplacian(const dealii::Point<2> &p) const override;
+
 private:
   Factor X, Y;
   double (*T)(double);
@@ -117,6 +126,11 @@ public:
   double reaction(const dealii::Point<2> &, double) const override { return 0.; }
   bool coefficients_depend_on_time() const override { return false; }
   double rhs(const dealii::Point<2> &, double) const override { return 0.; }
+  bool separable_rhs(std::vector<LoadTerm<2>> &terms) const override
+  {
+    terms.clear(); // f = 0: no terms
+    return true;
+  }
   double initial_value(const dealii::Point<2> &) const override { return 0.; }
   /// 1 on the circle (|x| < 2), 0 at the inflow.
   double dirichlet_value(const dealii::Point<2> &x, double t) const override;

@@ -44,6 +44,8 @@ template <int dim> void Space<dim>::setup()
   // keep_constrained_dofs = true: the unconstrained M, A live on the same pattern.
   DoFTools::make_sparsity_pattern(dofs, dsp, homogeneous, true);
   pattern.copy_from(dsp);
+  const std::lock_guard<std::mutex> lock(load_terms_mutex);
+  load_terms.clear();
 }
 
 template <int dim>
@@ -147,21 +149,20 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
 }
 
 template <int dim>
-void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
-                                std::vector<Vector<double>> &F) const
+void Space<dim>::assemble_volume_loads(
+    unsigned int n_sources, double tau,
+    const std::function<double(const Point<dim> &, unsigned int)> &f,
+    const std::function<Tensor<1, dim>(const Point<dim> &, unsigned int)> &b,
+    std::vector<Vector<double>> &F) const
 {
-  // one pass over the cells for all times: the shape values are computed once
-  F.resize(times.size());
-  for (auto &f : F)
-    f.reinit(dofs.n_dofs());
+  // one pass over the cells for all sources: the shape values are computed once
+  F.resize(n_sources);
+  for (auto &v : F)
+    v.reinit(dofs.n_dofs());
   const QGauss<dim> quad(fe.degree + 2);
-  const QGauss<dim - 1> fquad(fe.degree + 2);
   FEValues<dim> fv(map, fe, quad,
                    update_values | update_gradients | update_quadrature_points |
                        update_JxW_values);
-  FEFaceValues<dim> ffv(map, fe, fquad,
-                        update_values | update_quadrature_points | update_normal_vectors |
-                            update_JxW_values);
   const unsigned int n = fe.n_dofs_per_cell();
   Vector<double> cf(n);
   std::vector<types::global_dof_index> idx(n);
@@ -170,45 +171,99 @@ void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
     fv.reinit(cell);
     cell->get_dof_indices(idx);
     const double dK = delta(cell, tau);
-    for (std::size_t k = 0; k < times.size(); ++k)
+    for (unsigned int k = 0; k < n_sources; ++k)
     {
-      const double t = times[k];
       cf = 0.;
       for (unsigned int q = 0; q < quad.size(); ++q)
       {
         const Point<dim> &x = fv.quadrature_point(q);
-        const double f = scene.rhs(x, t) * fv.JxW(q);
-        if (f == 0.)
+        const double fq = f(x, k) * fv.JxW(q);
+        if (fq == 0.)
           continue;
         if (dK == 0.)
           for (unsigned int i = 0; i < n; ++i)
-            cf(i) += f * fv.shape_value(i, q);
+            cf(i) += fq * fv.shape_value(i, q);
         else
         {
-          const Tensor<1, dim> b = scene.convection(x, t);
+          const Tensor<1, dim> bq = b(x, k);
           for (unsigned int i = 0; i < n; ++i)
-            cf(i) += f * (fv.shape_value(i, q) + dK * (b * fv.shape_grad(i, q)));
+            cf(i) += fq * (fv.shape_value(i, q) + dK * (bq * fv.shape_grad(i, q)));
         }
       }
-      if (!scene.neumann_ids.empty())
-        for (const auto face : cell->face_indices())
-          if (cell->at_boundary(face) &&
-              scene.neumann_ids.count(cell->face(face)->boundary_id()))
-          {
-            ffv.reinit(cell, face);
-            for (unsigned int q = 0; q < fquad.size(); ++q)
-            {
-              const double g =
-                  scene.neumann_value(ffv.quadrature_point(q), ffv.normal_vector(q), t) *
-                  ffv.JxW(q);
-              for (unsigned int i = 0; i < n; ++i)
-                cf(i) += g * ffv.shape_value(i, q);
-            }
-          }
       for (unsigned int i = 0; i < n; ++i)
         F[k](idx[i]) += cf(i);
     }
   }
+}
+
+template <int dim>
+void Space<dim>::add_neumann_loads(const std::vector<double> &times,
+                                   std::vector<Vector<double>> &F) const
+{
+  if (scene.neumann_ids.empty())
+    return;
+  const QGauss<dim - 1> fquad(fe.degree + 2);
+  FEFaceValues<dim> ffv(map, fe, fquad,
+                        update_values | update_quadrature_points | update_normal_vectors |
+                            update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  std::vector<types::global_dof_index> idx(n);
+  for (const auto &cell : dofs.active_cell_iterators())
+    if (cell->at_boundary())
+      for (const auto face : cell->face_indices())
+        if (cell->at_boundary(face) && scene.neumann_ids.count(cell->face(face)->boundary_id()))
+        {
+          ffv.reinit(cell, face);
+          cell->get_dof_indices(idx);
+          for (std::size_t k = 0; k < times.size(); ++k)
+            for (unsigned int q = 0; q < fquad.size(); ++q)
+            {
+              const double g =
+                  scene.neumann_value(ffv.quadrature_point(q), ffv.normal_vector(q), times[k]) *
+                  ffv.JxW(q);
+              for (unsigned int i = 0; i < n; ++i)
+                F[k](idx[i]) += g * ffv.shape_value(i, q);
+            }
+        }
+}
+
+template <int dim>
+void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
+                                std::vector<Vector<double>> &F) const
+{
+  std::vector<LoadTerm<dim>> terms;
+  if (!scene.separable_rhs(terms))
+    assemble_volume_loads(
+        times.size(), tau, [&](const Point<dim> &x, unsigned int k)
+        { return scene.rhs(x, times[k]); },
+        [&](const Point<dim> &x, unsigned int k) { return scene.convection(x, times[k]); },
+        F);
+  else
+  {
+    // b does not depend on t here (separable_rhs' contract)
+    const std::lock_guard<std::mutex> lock(load_terms_mutex);
+    const double key = delta_depends_on_tau() ? tau : 0.;
+    auto G = load_terms.find(key);
+    if (G == load_terms.end())
+    {
+      if (load_terms.size() >= 8)
+        load_terms.clear();
+      G = load_terms.emplace(key, std::vector<Vector<double>>()).first;
+      assemble_volume_loads(
+          terms.size(), tau, [&](const Point<dim> &x, unsigned int j)
+          { return terms[j].g(x); },
+          [&](const Point<dim> &x, unsigned int) { return scene.convection(x, 0.); },
+          G->second);
+    }
+    F.resize(times.size());
+    for (std::size_t k = 0; k < times.size(); ++k)
+    {
+      F[k].reinit(dofs.n_dofs());
+      for (std::size_t j = 0; j < terms.size(); ++j)
+        F[k].add(terms[j].a(times[k]), G->second[j]);
+    }
+  }
+  add_neumann_loads(times, F);
 }
 
 template <int dim> void Space<dim>::assemble_initial(double tau, Vector<double> &U0) const

@@ -11,6 +11,10 @@
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -57,7 +61,11 @@ public:
   /// M(t), A(t) and their condensed forms on a slab of length tau (delta_K's bound).
   void assemble_matrices(double t, double tau, SpatialMatrices &m) const;
   /// The loads F_i(t_k) = (f(t_k), phi_i + delta_K b(t_k).grad phi_i) +
-  /// (u_N(t_k), phi_i)_{Gamma_N} for several times of one slab (one pass over the cells).
+  /// (u_N(t_k), phi_i)_{Gamma_N} for several times of one slab. If the scene's f is a
+  /// sum of products a_j(t) g_j(x) (Scene::separable_rhs), the vectors
+  /// (g_j, phi_i + delta_K b.grad phi_i) are assembled once per mesh (and slab length,
+  /// if delta_K depends on it) and combined per time; otherwise one pass over the cells
+  /// evaluates f at every time.
   void assemble_loads(const std::vector<double> &times, double tau,
                       std::vector<dealii::Vector<double>> &F) const;
   /// (u_0, phi_i + delta_K b(0).grad phi_i): the SUPG initial term (tau: the first
@@ -92,5 +100,20 @@ private:
   dealii::DoFHandler<dim> dofs;
   dealii::AffineConstraints<double> homogeneous;
   dealii::SparsityPattern pattern;
+
+  /// sum_k f_k(x, k) (phi_i + delta_K b_k(x).grad phi_i) over the cells, one vector per k.
+  void assemble_volume_loads(
+      unsigned int n_sources, double tau,
+      const std::function<double(const dealii::Point<dim> &, unsigned int)> &f,
+      const std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &, unsigned int)>
+          &b,
+      std::vector<dealii::Vector<double>> &F) const;
+  /// Adds (u_N(t_k), phi_i)_{Gamma_N} to F[k].
+  void add_neumann_loads(const std::vector<double> &times,
+                         std::vector<dealii::Vector<double>> &F) const;
+  /// The spatial parts of separable loads, by slab length (one entry if delta_K does
+  /// not depend on it); cleared by setup().
+  mutable std::map<double, std::vector<dealii::Vector<double>>> load_terms;
+  mutable std::mutex load_terms_mutex;
 };
 } // namespace anisodwr
