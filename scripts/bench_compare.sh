@@ -36,7 +36,7 @@ a, b = load("A", 1), load("B", 1)
 same = len(a) == len(b) and all(
     abs(float(x[k]) - float(y[k])) <= 1e-8 * max(1.0, abs(float(x[k])))
     for x, y in zip(a, b) for k in x
-    if not k.startswith("t_") and k != "mem_peak" and x[k] != "" and y[k] != "")
+    if not k.startswith("t_") and k not in ("mem_peak", "memory_estimate_mb") and x[k] != "" and y[k] != "")
 print(f"{len(a)} loops, last N_tot = {a[-1]['N_tot']}; results identical: {same}")
 print("| phase | A s | B s | A/B |\n|---|---|---|---|")
 for p in phases:

@@ -10,6 +10,7 @@
 #include "slab/primal_march.h"
 #include "study/options.h"
 
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
@@ -279,4 +280,66 @@ TEST(SpaceIndicator, PartsSumToEtaHInBothForms)
   for (const auto &c : pr.eta_h_cell)
     cells += c[0] + c[1];
   EXPECT_NEAR(cells, pr.eta_h_total(), 1e-12 * scale);
+}
+
+// The estimator's cells are shared among threads in chunks whose partial sums are added
+// in a fixed order: one thread and several give the same indicators up to round-off
+// (deal.II's FEValues reuses data between similar consecutive cells, so the last bits
+// of a cell's terms depend on the cell visited before it).
+TEST(Estimator, ThreadCountDoesNotChangeTheIndicators)
+{
+  const auto scene = create_scene<2>(Parameters::from_overrides({"scene.name=moving_hump"}));
+  Triangulation<2> tria;
+  make_mesh(tria);
+  tria.refine_global(2);
+  Space<2> primal(*scene, tria, 1, 1.), adjoint(*scene, tria, 2, 1.);
+  primal.setup();
+  adjoint.setup();
+  const TemporalBasis basis(1);
+  const TimeMesh mesh = TimeMesh::uniform(0.5, 3);
+  SlabOperator<2> op(primal, basis, SlabSolverOptions::direct(true));
+  SlabOperator<2> opq(adjoint, basis, SlabSolverOptions::direct(true));
+  const auto U = march_primal(primal, mesh, basis, op, MarchOptions{});
+  const auto goals = scene->default_goals(0.1);
+  const auto Z = march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, goals),
+                               MarchOptions{});
+  ASSERT_GT(tria.n_active_cells(), 4 * 64u); // several chunks
+  std::vector<Indicators<2>> runs;
+  for (const unsigned int threads : {1u, 3u})
+  {
+    MultithreadInfo::set_thread_limit(threads);
+    runs.push_back(estimate(primal, adjoint, mesh, basis, U, Z, goals, TimeIndicator::average,
+                            nullptr, SpaceIndicator::average));
+  }
+  MultithreadInfo::set_thread_limit();
+  const auto &a = runs[0], &b = runs[1];
+  double scale = 0;
+  for (const auto &c : a.eta_h_cell)
+    scale += std::abs(c[0]) + std::abs(c[1]);
+  ASSERT_GT(scale, 0.);
+  const double tol = 1e-13 * scale;
+  for (unsigned int c = 0; c < a.eta_h_cell.size(); ++c)
+  {
+    EXPECT_NEAR(a.eta_h_cell[c][0], b.eta_h_cell[c][0], tol);
+    EXPECT_NEAR(a.eta_h_cell[c][1], b.eta_h_cell[c][1], tol);
+    EXPECT_NEAR(a.eta_tau_cell[c], b.eta_tau_cell[c], tol);
+  }
+  for (unsigned int n = 0; n < a.eta_tau_slab.size(); ++n)
+    EXPECT_NEAR(a.eta_tau_slab[n], b.eta_tau_slab[n], tol);
+  for (const auto &[x, y] : std::vector<std::pair<double, double>>{
+           {a.eta_h[0], b.eta_h[0]},
+           {a.eta_h[1], b.eta_h[1]},
+           {a.eta_tau, b.eta_tau},
+           {a.eta_h_rho, b.eta_h_rho},
+           {a.eta_h_rhostar, b.eta_h_rhostar},
+           {a.eta_h_supg, b.eta_h_supg},
+           {a.eta_tau_rho, b.eta_tau_rho},
+           {a.eta_tau_rhostar, b.eta_tau_rhostar}})
+    EXPECT_NEAR(x, y, tol);
+  EXPECT_EQ(a.no_lift, b.no_lift);
+  // the sums are the sums of the cell terms (every cell visited once)
+  double cells = 0;
+  for (const auto &c : b.eta_h_cell)
+    cells += c[0] + c[1];
+  EXPECT_NEAR(cells, b.eta_h_total(), tol);
 }

@@ -6,9 +6,15 @@
 #include "slab/adjoint_march.h"
 
 #include <deal.II/base/function.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 namespace anisodwr
 {
@@ -29,15 +35,18 @@ public:
                     const std::vector<Vector<double>> &U,
                     const std::vector<Vector<double>> &Z,
                     const std::vector<GoalSpec> &goals, TimeIndicator time_indicator,
-                    const HigherOrderPrimal *hi, SpaceIndicator space_indicator);
+                    const HigherOrderPrimal *hi, SpaceIndicator space_indicator,
+                    const Vector<double> &zT, const Vector<double> &u0);
 
-  /// Adds the cell's eta_h,i and eta_tau (all slabs) to `ind`.
-  void add_cell(const cell_iterator &cell, Indicators<dim> &ind);
+  /// Adds the cell's eta_h,i and eta_tau (all slabs) to cells.eta_h_cell and
+  /// cells.eta_tau_cell, and its contributions to the sums (per slab, per direction,
+  /// the parts) to `sums`.
+  void add_cell(const cell_iterator &cell, Indicators<dim> &cells, Indicators<dim> &sums);
 
 private:
   /// The slab's terms for the cell; supg_part and lift_size accumulate over the slabs.
-  void add_slab(unsigned int n, unsigned int c, Indicators<dim> &ind, double &supg_part,
-                std::array<double, dim> &lift_size);
+  void add_slab(unsigned int n, unsigned int c, Indicators<dim> &cells,
+                Indicators<dim> &ind, double &supg_part, std::array<double, dim> &lift_size);
   /// W-local z and u at the temporal nodes of slab n, z(t_n^+) and u(t_{n-1}^-).
   void gather_slab(unsigned int n);
   /// eta_h,i on slab n; adds ||I_2h,i u - u||^2 over the slab to lift_size and the
@@ -65,8 +74,9 @@ private:
   const TemporalReconstruction recon;
   const LocalGoal<dim> goal_t, goal_T;
   const unsigned int N, m1, nw;
-  /// z(T^+) = M^{-1} j_T and the interpolant of u_0 (E_tau u at t_0)
-  Vector<double> zT, u0;
+  /// z(T^+) = M^{-1} j_T (empty without an end-time goal) and the interpolant of u_0
+  /// (E_tau u at t_0), shared by the assemblies of all threads
+  const Vector<double> &zT, &u0;
   /// E_tau at the temporal Gauss points (values [0] and derivatives [1]): the same
   /// combinations for every cell and slab
   std::vector<std::array<TimeCombination, 2>> E_z, E_u;
@@ -91,7 +101,7 @@ IndicatorAssembly<dim>::IndicatorAssembly(
     const TemporalBasis &basis, const std::vector<Vector<double>> &U,
     const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
     TimeIndicator time_indicator, const HigherOrderPrimal *hi,
-    SpaceIndicator space_indicator)
+    SpaceIndicator space_indicator, const Vector<double> &zT, const Vector<double> &u0)
     : primal(primal), adjoint(adjoint), mesh(mesh), basis(basis), U(U), Z(Z),
       time_indicator(time_indicator), hi(hi), space_indicator(space_indicator),
       tria(primal.dof_handler().get_triangulation()),
@@ -100,18 +110,11 @@ IndicatorAssembly<dim>::IndicatorAssembly(
       Q(ops.interpolation_from(adjoint.finite_element())), kernel(primal, fe_w, basis),
       recon(basis), goal_t(primal.mapping(), fe_w, tria, goals, true),
       goal_T(primal.mapping(), fe_w, tria, goals, false), N(mesh.n_slabs()),
-      m1(basis.n_dofs()), nw(fe_w.n_dofs_per_cell()), u0(primal.n_dofs()),
+      m1(basis.n_dofs()), nw(fe_w.n_dofs_per_cell()), zT(zT), u0(u0),
       E_z(kernel.n_points()), E_u(kernel.n_points()), m2(hi ? hi->basis.n_dofs() : 0),
       hk(m2), e_prev(nw), idx_q(adjoint.finite_element().n_dofs_per_cell()), zk(m1),
       uk(m1), vk(m1), z_next(nw), u_prev(nw), tmp(nw), vT(nw), vz(nw), vu(nw), lift(dim)
 {
-  if (!goal_T.empty())
-    zT = end_time_representer(adjoint, goals);
-  {
-    const ScalarFunctionFromFunctionObject<dim> f0(
-        [&](const Point<dim> &x) { return primal.scene.initial_value(x); });
-    VectorTools::interpolate(primal.mapping(), primal.dof_handler(), f0, u0);
-  }
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
     for (unsigned int d = 0; d < 2; ++d)
     {
@@ -130,7 +133,8 @@ IndicatorAssembly<dim>::IndicatorAssembly(
 }
 
 template <int dim>
-void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell, Indicators<dim> &ind)
+void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell, Indicators<dim> &cells,
+                                      Indicators<dim> &ind)
 {
   kernel.reinit(cell);
   typename DoFHandler<dim>::active_cell_iterator cq(&tria, cell->level(), cell->index(),
@@ -147,7 +151,7 @@ void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell, Indicators<dim>
   std::array<double, dim> lift_size{}; // ||I_2h,i u - u||^2 over the slabs
 
   for (unsigned int n = 0; n < N; ++n)
-    add_slab(n, c, ind, supg_part, lift_size);
+    add_slab(n, c, cells, ind, supg_part, lift_size);
   // The SUPG consistency term is not directional (the seed formula's 1/2 S(u)(R_i z)
   // is nearly the same for every i: R_i z does not measure direction i). Its cell
   // total S(u)(R_h z) is split over the directions in proportion to the size of the
@@ -161,15 +165,15 @@ void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell, Indicators<dim>
   for (unsigned int i = 0; i < dim; ++i)
   {
     const double share = (total > 0 ? lift_size[i] / total : 1. / dim) * supg_part;
-    ind.eta_h_cell[c][i] += share;
+    cells.eta_h_cell[c][i] += share;
     ind.eta_h[i] += share;
   }
 }
 
 template <int dim>
 void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
-                                      Indicators<dim> &ind, double &supg_part,
-                                      std::array<double, dim> &lift_size)
+                                      Indicators<dim> &cells, Indicators<dim> &ind,
+                                      double &supg_part, std::array<double, dim> &lift_size)
 {
   const double t0 = mesh.start(n), tau = mesh.tau(n);
   kernel.primal_functionals(t0, tau, U[n], n ? &U[n - 1] : nullptr, rho, supg);
@@ -192,7 +196,7 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   for (unsigned int i = 0; i < dim; ++i)
   {
     const double eta = directional_indicator(i, n, tau, last, lift_size[i], ind);
-    ind.eta_h_cell[c][i] += eta;
+    cells.eta_h_cell[c][i] += eta;
     ind.eta_h[i] += eta;
   }
 
@@ -207,7 +211,7 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
                              : 2 * half_rhostar;
   ind.eta_tau_rho += half_rho;
   ind.eta_tau_rhostar += half_rhostar;
-  ind.eta_tau_cell[c] += eta_tau;
+  cells.eta_tau_cell[c] += eta_tau;
   ind.eta_tau_slab[n] += eta_tau;
   ind.eta_tau += eta_tau;
 }
@@ -385,15 +389,79 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
     throw std::invalid_argument(
         "estimate: the higher-order primal must be dG(r+1) on the "
         "same slabs");
-  IndicatorAssembly<dim> assembly(primal, adjoint, mesh, basis, U, Z, goals,
-                                  time_indicator, hi, space_indicator);
+  Vector<double> zT, u0(primal.n_dofs());
+  if (std::any_of(goals.begin(), goals.end(), [](const GoalSpec &g) { return !g.over_time; }))
+    zT = end_time_representer(adjoint, goals);
+  {
+    const ScalarFunctionFromFunctionObject<dim> f0(
+        [&](const Point<dim> &x) { return primal.scene.initial_value(x); });
+    VectorTools::interpolate(primal.mapping(), primal.dof_handler(), f0, u0);
+  }
   const auto &tria = primal.dof_handler().get_triangulation();
   Indicators<dim> ind;
   ind.eta_h_cell.assign(tria.n_active_cells(), std::array<double, dim>{});
   ind.eta_tau_cell.assign(tria.n_active_cells(), 0.);
   ind.eta_tau_slab.assign(mesh.n_slabs(), 0.);
+
+  // The cells are cut into chunks that depend only on their number; each chunk sums
+  // its own contributions and the chunks are added in order, so the totals depend on
+  // the number of threads only through round-off in the cell terms (deal.II's FEValues
+  // reuses data between similar consecutive cells). Each thread has its own assembly
+  // (buffers, FEValues); a cell's own indicators are written by the one thread that
+  // owns it. Threads: MultithreadInfo::n_threads() (all cores; DEAL_II_NUM_THREADS).
+  std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
   for (const auto &cell : primal.dof_handler().active_cell_iterators())
-    assembly.add_cell(cell, ind);
+    cells.push_back(cell);
+  const std::size_t chunk = std::max<std::size_t>(64, (cells.size() + 255) / 256),
+                    n_chunks = (cells.size() + chunk - 1) / chunk;
+  std::vector<Indicators<dim>> sums(n_chunks);
+  for (auto &s : sums)
+    s.eta_tau_slab.assign(mesh.n_slabs(), 0.);
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto work = [&]()
+  {
+    try
+    {
+      IndicatorAssembly<dim> assembly(primal, adjoint, mesh, basis, U, Z, goals,
+                                      time_indicator, hi, space_indicator, zT, u0);
+      for (std::size_t k = next++; k < n_chunks; k = next++)
+        for (std::size_t c = k * chunk; c < std::min(cells.size(), (k + 1) * chunk); ++c)
+          assembly.add_cell(cells[c], ind, sums[k]);
+    }
+    catch (...)
+    {
+      const std::lock_guard<std::mutex> lock(failure_mutex);
+      failure = std::current_exception();
+      next = n_chunks; // the other threads stop after their chunk
+    }
+  };
+  const unsigned int n_threads =
+      std::min<std::size_t>(MultithreadInfo::n_threads(), n_chunks);
+  std::vector<std::thread> threads;
+  for (unsigned int t = 1; t < n_threads; ++t)
+    threads.emplace_back(work);
+  work();
+  for (auto &t : threads)
+    t.join();
+  if (failure)
+    std::rethrow_exception(failure);
+
+  for (const auto &s : sums)
+  {
+    for (unsigned int i = 0; i < dim; ++i)
+      ind.eta_h[i] += s.eta_h[i];
+    for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+      ind.eta_tau_slab[n] += s.eta_tau_slab[n];
+    ind.eta_tau += s.eta_tau;
+    ind.eta_tau_rho += s.eta_tau_rho;
+    ind.eta_tau_rhostar += s.eta_tau_rhostar;
+    ind.eta_h_rho += s.eta_h_rho;
+    ind.eta_h_rhostar += s.eta_h_rhostar;
+    ind.eta_h_supg += s.eta_h_supg;
+    ind.no_lift += s.no_lift;
+  }
   return ind;
 }
 

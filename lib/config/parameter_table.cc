@@ -146,12 +146,13 @@ std::vector<Entry> solver_entries()
        "factorization per slab (coefficients that depend on time, or no reuse) also "
        "iterative from N_space (r+1)^2 >= solver.auto_threshold. The choice and its "
        "reason are printed when they change."},
-      {"solver", "dof_numbering", "native", m(&S::dof_numbering),
-       choice("native|downstream"),
-       "Spatial DoF order: native (deal.II's cell-wise order) or downstream (sorted "
+      {"solver", "dof_numbering", "auto", m(&S::dof_numbering),
+       choice("auto|native|downstream"),
+       "Spatial DoF order: native (deal.II's cell-wise order), downstream (sorted "
        "along the convection b at the domain's centre; ILU and Gauss-Seidel then sweep "
        "with the flow, which keeps them effective on convection-dominated, anisotropic "
-       "meshes). "
+       "meshes), or auto: downstream unless solver.type = direct (native then, so that "
+       "direct runs stay bit-identical to earlier versions). "
        "Direct solves are unaffected up to round-off."},
       {"solver", "reuse_factorization", "true", m(&S::reuse_factorization), boolean,
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "

@@ -90,7 +90,7 @@ struct DiscretizationSection
 struct SolverSection
 {
   std::string type = "auto";
-  std::string dof_numbering = "native";
+  std::string dof_numbering = "auto"; ///< auto: downstream unless type = direct
   bool reuse_factorization = true;
   unsigned int refinement_steps = 0;
   double auto_threshold = 1e6;

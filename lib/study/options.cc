@@ -72,7 +72,9 @@ std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scen
   auto space = std::make_unique<Space<2>>(scene, tria, degree, stabilized ? d.delta0 : 0.,
                                           d.supg_length == SupgLength::streamline,
                                           d.supg_tau_factor);
-  space->set_downstream_numbering(prm.solver.dof_numbering == "downstream");
+  const std::string &numbering = prm.solver.dof_numbering;
+  space->set_downstream_numbering(numbering == "downstream" ||
+                                  (numbering == "auto" && prm.solver.type != "direct"));
   space->setup();
   return space;
 }
