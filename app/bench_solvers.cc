@@ -86,7 +86,7 @@ int main(int argc, char **argv)
   SlabSolverOptions o;
   std::string krylov = "-", prec = "-";
   if (solver == "direct")
-    o.type = "direct";
+    o.type = SolverType::direct;
   else
   {
     const auto plus = solver.find('+');
@@ -96,15 +96,15 @@ int main(int argc, char **argv)
     if (at != std::string::npos)
     {
       const std::string spatial = prec.substr(at + 1);
-      o.iterative.spatial_preconditioner = "amg";
-      o.iterative.amg_smoother = spatial == "amg-gs"     ? "gauss_seidel"
-                                 : spatial == "amg-cheb" ? "chebyshev"
-                                                         : "ilu";
+      o.iterative.spatial_preconditioner = SpatialPreconditioner::amg;
+      o.iterative.amg_smoother = spatial == "amg-gs"     ? AmgSmoother::gauss_seidel
+                                 : spatial == "amg-cheb" ? AmgSmoother::chebyshev
+                                                         : AmgSmoother::ilu;
       prec = prec.substr(0, at);
     }
-    o.type = "iterative";
-    o.iterative.krylov = krylov;
-    o.iterative.preconditioner = prec;
+    o.type = SolverType::iterative;
+    o.iterative.krylov = choice_named<Krylov>(krylov);
+    o.iterative.preconditioner = choice_named<Preconditioner>(prec);
     o.iterative.tolerance = 1e-10;
     o.iterative.restart = 30;
     o.iterative.max_iterations = 500;
@@ -113,7 +113,7 @@ int main(int argc, char **argv)
   }
   // AMG needs MPI (the library initializes it on first use); initialized here, outside
   // the timed setup, since it is a once-per-process cost (about 1 s for a singleton).
-  const bool amg = o.iterative.spatial_preconditioner == "amg";
+  const bool amg = o.iterative.spatial_preconditioner == SpatialPreconditioner::amg;
   if (amg)
   {
     MPI_Init(nullptr, nullptr);

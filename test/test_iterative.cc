@@ -59,12 +59,12 @@ SlabSolverOptions iterative(const std::string &krylov, const std::string &prec,
                             double tol)
 {
   SlabSolverOptions o;
-  o.type = "iterative";
-  o.iterative.krylov = krylov;
-  o.iterative.preconditioner = prec;
+  o.type = SolverType::iterative;
+  o.iterative.krylov = choice_named<Krylov>(krylov);
+  o.iterative.preconditioner = choice_named<Preconditioner>(prec);
   o.iterative.tolerance = tol;
   o.iterative.max_iterations = 3000;
-  o.fallback = "none"; // failures must surface in these tests
+  o.fallback = Fallback::none; // failures must surface in these tests
   o.iterative.restart = 60;
   // These tests check that each combination reaches the tolerance within 3000
   // iterations; stagnation detection (tests "Stagnation.*") would stop the slow ones:
@@ -184,7 +184,7 @@ TEST(Iterative, NonConvergenceThrowsOrFallsBack)
         << what;
     EXPECT_NE(what.find("relative residual"), std::string::npos) << what;
   }
-  o.fallback = "direct";
+  o.fallback = Fallback::direct;
   SlabOperator<2> fallback(*s.space, basis, o),
       direct(*s.space, basis, SlabSolverOptions::direct(true));
   fallback.prepare(0., 0.05);
@@ -211,7 +211,7 @@ TEST(Iterative, AutoPicksBySlabSizeWhenEachSlabIsFactorized)
   SlabProblem s("moving_hump", "", 1, 1e-6);
   const TemporalBasis basis(1);
   SlabSolverOptions o;
-  o.type = "auto";
+  o.type = SolverType::automatic;
   o.reuse_factorization = false; // one factorization per slab: the size threshold decides
   o.auto_memory_mb = 1e9;
   o.auto_threshold = 4. * s.space->n_dofs(); // = N_space (r+1)^2: iterative
@@ -226,7 +226,8 @@ TEST(Iterative, AutoPicksBySlabSizeWhenEachSlabIsFactorized)
   EXPECT_EQ(small.timings().n_factorizations, 1u);
   // The config default is auto with a threshold of 1e6 slab unknowns.
   const Parameters prm = Parameters::from_overrides({});
-  EXPECT_EQ(prm.solver.type, "auto");
+  EXPECT_EQ(prm.solver.type, SolverType::automatic);
+  EXPECT_EQ(name(prm.solver.type), "auto");
   EXPECT_EQ(slab_solver_options(prm).auto_threshold, 1e6);
 }
 
@@ -236,7 +237,7 @@ TEST(Iterative, AutoUsesUmfpackWhileItsPredictedPeakFits)
   SlabProblem s("moving_hump", "", 1, 1e-6);
   const TemporalBasis basis(1);
   SlabSolverOptions o;
-  o.type = "auto";
+  o.type = SolverType::automatic;
   o.auto_threshold = 1.; // far above the size threshold: memory alone decides
   const double n = 2. * s.space->n_dofs();
   EXPECT_EQ(predicted_lu_mb(n, 1, 2), fitted_lu_mb(n, 1, 2));
@@ -399,7 +400,7 @@ TEST(Stagnation, StallingGmresStopsWithinTheWindow)
     // fallback = direct redoes the stalled solve with UMFPACK.
     o.iterative.stagnation_window = 50;
     o.iterative.max_iterations = 3000;
-    o.fallback = "direct";
+    o.fallback = Fallback::direct;
     SlabOperator<2> fb(*s.space, basis, o), direct(*s.space, basis,
                                                    SlabSolverOptions::direct(true));
     fb.prepare(0.1, 0.05);
@@ -467,8 +468,8 @@ TEST(Stagnation, ConvergingSolvesAreUnaffected)
 TEST(Stagnation, KeysHaveDefaults)
 {
   const Parameters prm = Parameters::from_overrides({});
-  EXPECT_EQ(prm.solver.stagnation_window, 50u);
-  EXPECT_EQ(prm.solver.stagnation_factor, 10.);
+  EXPECT_EQ(prm.solver.iterative.stagnation_window, 50u);
+  EXPECT_EQ(prm.solver.iterative.stagnation_factor, 10.);
   const auto o = slab_solver_options(Parameters::from_overrides(
       {"solver.stagnation_window=0", "solver.stagnation_factor=100"}));
   EXPECT_EQ(o.iterative.stagnation_window, 0u);
@@ -499,8 +500,8 @@ TEST(Amg, KroneckerPreconditionersWithAmgAgreeWithUmfpack)
         {
           const double tol = 1e-10;
           auto o = iterative("gmres", prec, tol);
-          o.iterative.spatial_preconditioner = "amg";
-          o.iterative.amg_smoother = smoother;
+          o.iterative.spatial_preconditioner = SpatialPreconditioner::amg;
+          o.iterative.amg_smoother = choice_named<AmgSmoother>(smoother);
           SlabOperator<2> it(*s.space, basis, o);
           it.prepare(0.1, 0.05);
           Vector<double> Ui;
@@ -522,12 +523,12 @@ TEST(Amg, KroneckerPreconditionersWithAmgAgreeWithUmfpack)
 TEST(Amg, KeysAndDefault)
 {
   const Parameters prm = Parameters::from_overrides({});
-  EXPECT_EQ(prm.solver.spatial_preconditioner, "ilu");
-  EXPECT_EQ(prm.solver.amg_smoother, "ilu");
+  EXPECT_EQ(prm.solver.iterative.spatial_preconditioner, SpatialPreconditioner::ilu);
+  EXPECT_EQ(prm.solver.iterative.amg_smoother, AmgSmoother::ilu);
   const auto o = slab_solver_options(Parameters::from_overrides(
       {"solver.spatial_preconditioner=amg", "solver.amg_smoother=chebyshev"}));
-  EXPECT_EQ(o.iterative.spatial_preconditioner, "amg");
-  EXPECT_EQ(o.iterative.amg_smoother, "chebyshev");
+  EXPECT_EQ(o.iterative.spatial_preconditioner, SpatialPreconditioner::amg);
+  EXPECT_EQ(o.iterative.amg_smoother, AmgSmoother::chebyshev);
 }
 } // namespace
 

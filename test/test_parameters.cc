@@ -64,7 +64,7 @@ TEST(Parameters, NumbersAndStrings)
   EXPECT_EQ(p.adaptivity.theta_h, 0.5);
   EXPECT_EQ(p.discretization.p, 3u);
   EXPECT_FALSE(p.output.progress);
-  EXPECT_EQ(p.solver.krylov, "bicgstab");
+  EXPECT_EQ(p.solver.iterative.krylov, Krylov::bicgstab);
   EXPECT_EQ(p.goal.locations, "0.5,0.5");
 }
 

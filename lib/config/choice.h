@@ -6,6 +6,7 @@
 // in which it is documented; parsing, printing and the list of accepted values all
 // come from that table.
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -42,5 +43,14 @@ template <class E> std::string choice_list(const std::string &separator)
   for (const auto &n : names(E{}))
     list += (list.empty() ? "" : separator) + n.name;
   return list;
+}
+
+/// The value named `text`; std::invalid_argument naming the accepted values otherwise
+/// (for code and tests that name choices; configs are checked by their patterns).
+template <class E> E choice_named(const std::string &text)
+{
+  if (const auto e = parse_choice<E>(text))
+    return *e;
+  throw std::invalid_argument("'" + text + "' is none of " + choice_list<E>(", "));
 }
 } // namespace anisodwr

@@ -10,15 +10,15 @@ namespace
 {
 namespace P = dealii::Patterns;
 
-/// The member `member` of the section `section` of Parameters, read from and printed
-/// to text (numbers as in to_json: 17 significant digits; enums by their names).
-template <class Section, class T>
-Binding at(Section Parameters::*section, T Section::*member)
+/// The member of Parameters that `ref` (a generic callable: Parameters & -> T &, also
+/// for const) refers to, read from and printed to text (numbers as in to_json: 17
+/// significant digits; enums by their names).
+template <class T, class Ref> Binding bind(Ref ref)
 {
   Binding b;
-  b.set = [section, member](Parameters &p, const std::string &v)
+  b.set = [ref](Parameters &p, const std::string &v)
   {
-    T &x = p.*section.*member;
+    T &x = ref(p);
     if constexpr (std::is_same_v<T, double>)
       x = std::stod(v);
     else if constexpr (std::is_same_v<T, unsigned int>)
@@ -32,9 +32,9 @@ Binding at(Section Parameters::*section, T Section::*member)
     else
       throw std::logic_error("no name '" + v + "' in the table of an enum");
   };
-  b.get = [section, member](const Parameters &p) -> std::string
+  b.get = [ref](const Parameters &p) -> std::string
   {
-    const T &x = p.*section.*member;
+    const T &x = ref(p);
     if constexpr (std::is_same_v<T, double>)
     {
       std::ostringstream s;
@@ -62,6 +62,22 @@ Binding at(Section Parameters::*section, T Section::*member)
   if constexpr (std::is_enum_v<T>)
     b.choices = std::make_shared<P::Selection>(choice_list<T>("|"));
   return b;
+}
+
+/// The member `member` of the section `section` (a member of the section's struct or
+/// of one of its bases).
+template <class Section, class Base, class T>
+Binding at(Section Parameters::*section, T Base::*member)
+{
+  return bind<T>([section, member](auto &p) -> auto & { return p.*section.*member; });
+}
+
+/// The member `member` of the sub-struct `sub` of the section `section`.
+template <class Section, class Base, class Sub, class T>
+Binding at(Section Parameters::*section, Sub Base::*sub, T Sub::*member)
+{
+  return bind<T>([section, sub, member](auto &p) -> auto &
+                 { return (p.*section.*sub).*member; });
 }
 
 std::shared_ptr<PatternBase> integer(int lo, int hi)
@@ -138,16 +154,19 @@ std::vector<Entry> solver_entries()
 {
   using S = SolverSection;
   const auto m = [](auto member) { return at(&Parameters::solver, member); };
+  // the Krylov options: members of SlabSolverOptions::iterative
+  using I = IterativeOptions;
+  const auto k = [](auto member)
+  { return at(&Parameters::solver, &SlabSolverOptions::iterative, member); };
   return {
-      {"solver", "type", "auto", m(&S::type), choice("direct|iterative|auto"),
+      {"solver", "type", "auto", m(&S::type), by_name,
        "Slab solver: direct (UMFPACK), iterative (Belos Krylov method solver.krylov "
        "with solver.preconditioner, Trilinos), or auto: UMFPACK while its predicted "
        "factorization peak fits solver.auto_memory_mb, iterative otherwise; with a "
        "factorization per slab (coefficients that depend on time, or no reuse) also "
        "iterative from N_space (r+1)^2 >= solver.auto_threshold. The choice and its "
        "reason are printed when they change."},
-      {"solver", "dof_numbering", "auto", m(&S::dof_numbering),
-       choice("auto|native|downstream"),
+      {"solver", "dof_numbering", "auto", m(&S::dof_numbering), by_name,
        "Spatial DoF order: native (deal.II's cell-wise order), downstream (sorted "
        "along the convection b at the domain's centre; ILU and Gauss-Seidel then sweep "
        "with the flow, which keeps them effective on convection-dominated, anisotropic "
@@ -171,12 +190,10 @@ std::vector<Entry> solver_entries()
        "and r in the run, else from a fit: about 1 kB per unknown for dG(0), 2 kB for "
        "dG(2)); 0 = half the physical memory. The budget covers UMFPACK's own peak only, "
        "not the slab matrix or the stored solutions."},
-      {"solver", "krylov", "gmres", m(&S::krylov), choice("gmres|fgmres|bicgstab"),
+      {"solver", "krylov", "gmres", k(&I::krylov), by_name,
        "Iterative solver: gmres (restarted, right preconditioned), fgmres (flexible) or "
        "bicgstab (Belos)."},
-      {"solver", "preconditioner", "kronecker_presb", m(&S::preconditioner),
-       choice("none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker|"
-              "kronecker_presb"),
+      {"solver", "preconditioner", "kronecker_presb", k(&I::preconditioner), by_name,
        "Preconditioner (Ifpack2 unless noted): ilut / riluk = ILUT / ILU(k) of the whole "
        "slab matrix; block_jacobi / block_gauss_seidel = one sweep of block relaxation "
        "with the (r+1)x(r+1) temporal blocks; block_ilu = block ILU(k) (RBILUK) with "
@@ -184,36 +201,34 @@ std::vector<Entry> solver_entries()
        "decoupling "
        "the temporal modes, ILU(k) of each shifted spatial matrix, PRESB for complex "
        "pairs (coefficients frozen at the slab midpoint if they depend on t); none."},
-      {"solver", "tolerance", "1e-10", m(&S::tolerance), real(0.),
+      {"solver", "tolerance", "1e-10", k(&I::tolerance), real(0.),
        "Krylov stopping rule: ||b - K x|| <= tolerance ||b|| (true residual checked)."},
-      {"solver", "restart", "30", m(&S::restart), integer(1, 10000),
+      {"solver", "restart", "30", k(&I::restart), integer(1, 10000),
        "GMRES restart length (Krylov vectors kept)."},
-      {"solver", "max_iterations", "500", m(&S::max_iterations), integer(1, 1000000),
+      {"solver", "max_iterations", "500", k(&I::max_iterations), integer(1, 1000000),
        "Krylov iterations per slab solve before it counts as failed."},
-      {"solver", "ilu_fill", "1", m(&S::ilu_fill), real(0.),
+      {"solver", "ilu_fill", "1", k(&I::ilu_fill), real(0.),
        "ILU(k) level k (riluk, block_ilu, kronecker; rounded) or ILUT fill ratio "
        "(ilut, >= 1)."},
-      {"solver", "spatial_preconditioner", "ilu", m(&S::spatial_preconditioner),
-       choice("ilu|amg"),
+      {"solver", "spatial_preconditioner", "ilu", k(&I::spatial_preconditioner), by_name,
        "Inner solver of the kronecker and kronecker_presb preconditioners for each "
        "temporal mode's spatial matrix (lambda M + A; the 2n x 2n real form or the PRESB "
        "matrices of complex pairs): ilu = Ifpack2 ILU(k), k = solver.ilu_fill; amg = "
        "one V-cycle of ML smoothed aggregation for nonsymmetric matrices (NSSA, through "
        "deal.II's TrilinosWrappers::PreconditionAMG), smoother solver.amg_smoother."},
-      {"solver", "amg_smoother", "ilu", m(&S::amg_smoother),
-       choice("ilu|gauss_seidel|chebyshev"),
+      {"solver", "amg_smoother", "ilu", k(&I::amg_smoother), by_name,
        "Smoother of solver.spatial_preconditioner = amg (one sweep per level): ilu "
        "(ILU(0)), gauss_seidel or chebyshev."},
-      {"solver", "stagnation_window", "50", m(&S::stagnation_window), integer(0, 1000000),
+      {"solver", "stagnation_window", "50", k(&I::stagnation_window), integer(0, 1000000),
        "Stagnation detection: a Krylov solve whose residual has not fallen by "
        "solver.stagnation_factor over the last stagnation_window iterations stops and "
        "counts as failed (then solver.fallback applies); 0 = off. gmres/fgmres watch "
        "the implicit residual every iteration, bicgstab runs in chunks of this many "
        "iterations."},
-      {"solver", "stagnation_factor", "10", m(&S::stagnation_factor), real(0.),
+      {"solver", "stagnation_factor", "10", k(&I::stagnation_factor), real(0.),
        "Stagnation detection: required residual reduction over "
        "solver.stagnation_window iterations; <= 1 = off."},
-      {"solver", "fallback", "direct", m(&S::fallback), choice("none|direct"),
+      {"solver", "fallback", "direct", m(&S::fallback), by_name,
        "On a failed Krylov solve: none = numerical error (exit code 3) naming loop, "
        "slab, "
        "solver and residual; direct = redo it with UMFPACK (kept for the remaining slabs "

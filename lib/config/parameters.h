@@ -11,6 +11,7 @@
 #include "config/choice.h"
 #include "goal/goal_spec.h"
 #include "scene/scene_name.h"
+#include "slab/slab_solver_options.h"
 
 #include <iosfwd>
 #include <map>
@@ -85,27 +86,27 @@ struct DiscretizationSection
   unsigned int n_slabs = 5;
 };
 
-/// The choices of this section stay text: they are handed on as such to
-/// SlabSolverOptions and IterativeOptions (slab/, solver/).
-struct SolverSection
+/// Spatial DoF order (solver.dof_numbering): automatic ("auto") = downstream unless
+/// solver.type = direct.
+enum class DofNumbering
 {
-  std::string type = "auto";
-  std::string dof_numbering = "auto"; ///< auto: downstream unless type = direct
-  bool reuse_factorization = true;
-  unsigned int refinement_steps = 0;
-  double auto_threshold = 1e6;
-  double auto_memory_mb = 0.; ///< 0: half the physical memory
-  std::string krylov = "gmres";
-  std::string preconditioner = "kronecker_presb";
-  double tolerance = 1e-10;
-  unsigned int restart = 30;
-  unsigned int max_iterations = 500;
-  double ilu_fill = 1.;
-  std::string spatial_preconditioner = "ilu";
-  std::string amg_smoother = "ilu";
-  unsigned int stagnation_window = 50;
-  double stagnation_factor = 10.;
-  std::string fallback = "direct";
+  automatic,
+  native,
+  downstream
+};
+inline const std::vector<Named<DofNumbering>> &names(DofNumbering)
+{
+  static const std::vector<Named<DofNumbering>> table{{DofNumbering::automatic, "auto"},
+                                                      {DofNumbering::native, "native"},
+                                                      {DofNumbering::downstream, "downstream"}};
+  return table;
+}
+
+/// The slab solver's options (slab/, solver/) and the DoF order of the spaces.
+struct SolverSection : SlabSolverOptions
+{
+  SolverSection() { type = SolverType::automatic; }
+  DofNumbering dof_numbering = DofNumbering::automatic;
 };
 
 struct StudySection

@@ -89,8 +89,8 @@ bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m
 bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
                         unsigned int degree, bool factorization_reused)
 {
-  return options.type == "iterative" ||
-         (options.type == "auto" &&
+  return options.type == SolverType::iterative ||
+         (options.type == SolverType::automatic &&
           auto_picks_iterative(options, n_space * m, m, degree, factorization_reused));
 }
 
@@ -100,10 +100,6 @@ SlabOperator<dim>::SlabOperator(const Space<dim> &space, const TemporalBasis &ba
     : space(space), basis(basis), opt(options), reuse(options.reuse_factorization),
       lu(options.refinement_steps)
 {
-  if (opt.type != "direct" && opt.type != "iterative" && opt.type != "auto")
-    throw std::invalid_argument("solver.type must be direct, iterative or auto");
-  if (opt.fallback != "none" && opt.fallback != "direct")
-    throw std::invalid_argument("solver.fallback must be none or direct");
   make_kron_sparsity(space.sparsity(), basis.n_dofs(), pattern);
 }
 
@@ -224,10 +220,10 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
   // The kronecker preconditioners work matrix-free: K is assembled only if needed.
   K.clear();
   k_assembled = false;
-  if (opt.type == "auto")
+  if (opt.type == SolverType::automatic)
     choose_solver(constant && reuse);
   else
-    use_iterative = opt.type == "iterative";
+    use_iterative = opt.type == SolverType::iterative;
   if (!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative))
     assemble_matrix();
   if (!use_iterative)
@@ -321,7 +317,7 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
   }
   catch (const KrylovFailure &)
   {
-    if (opt.fallback != "direct")
+    if (opt.fallback != Fallback::direct)
       throw;
     ++time.n_fallbacks;
     ++totals.fallbacks;

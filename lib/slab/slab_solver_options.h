@@ -1,15 +1,45 @@
 #pragma once
 // The slab solver choice (config section solver) without the solvers' types.
+#include "config/choice.h"
 #include "solver/iterative_options.h"
 
-#include <string>
+#include <vector>
 
 namespace anisodwr
 {
+/// direct: UMFPACK; iterative: Krylov (IterativeOptions); automatic ("auto"): see
+/// SlabSolverOptions::auto_memory_mb.
+enum class SolverType
+{
+  direct,
+  iterative,
+  automatic
+};
+inline const std::vector<Named<SolverType>> &names(SolverType)
+{
+  static const std::vector<Named<SolverType>> table{{SolverType::direct, "direct"},
+                                                    {SolverType::iterative, "iterative"},
+                                                    {SolverType::automatic, "auto"}};
+  return table;
+}
+
+/// What a failed Krylov solve does: none = numerical error; direct = redo it by UMFPACK.
+enum class Fallback
+{
+  none,
+  direct
+};
+inline const std::vector<Named<Fallback>> &names(Fallback)
+{
+  static const std::vector<Named<Fallback>> table{{Fallback::none, "none"},
+                                                  {Fallback::direct, "direct"}};
+  return table;
+}
+
 /// Slab solver choice (config section solver).
 struct SlabSolverOptions
 {
-  std::string type = "direct"; ///< direct | iterative | auto
+  SolverType type = SolverType::direct;
   bool reuse_factorization = true;
   /// UMFPACK's iterative refinement steps per direct solve
   unsigned int refinement_steps = 0;
@@ -19,7 +49,7 @@ struct SlabSolverOptions
   /// auto_threshold.
   double auto_threshold = 1e6;
   double auto_memory_mb = 0.;
-  std::string fallback = "direct"; ///< none | direct
+  Fallback fallback = Fallback::direct;
   IterativeOptions iterative;
 
   static SlabSolverOptions direct(bool reuse)

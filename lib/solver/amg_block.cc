@@ -86,9 +86,9 @@ void AmgBlock::build_hierarchy(unsigned int block_size, const IterativeOptions &
   data.aggregation_threshold = 1e-4;
   data.smoother_sweeps = 1;
   data.smoother_overlap = 0;
-  data.smoother_type = o.amg_smoother == "gauss_seidel" ? "Gauss-Seidel"
-                       : o.amg_smoother == "chebyshev"  ? "Chebyshev"
-                                                        : "ILU";
+  data.smoother_type = o.amg_smoother == AmgSmoother::gauss_seidel ? "Gauss-Seidel"
+                       : o.amg_smoother == AmgSmoother::chebyshev  ? "Chebyshev"
+                                                                   : "ILU";
   data.coarse_type = "Amesos-KLU";
   if (block_size > 1)
   {

@@ -88,17 +88,6 @@ private:
 };
 } // namespace
 
-const char *preconditioner_names()
-{
-  return "none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker|kronecker_"
-         "presb";
-}
-
-const char *spatial_preconditioner_names()
-{
-  return "ilu|amg";
-}
-
 struct IterativeSlabSolver::Impl
 {
   IterativeOptions o;
@@ -120,17 +109,15 @@ IterativeSlabSolver::~IterativeSlabSolver() = default;
 std::string IterativeSlabSolver::name() const
 {
   const auto &o = impl->o;
-  std::string n = o.krylov + "+" + o.preconditioner;
-  if (o.spatial_preconditioner == "amg" &&
-      (o.preconditioner == "kronecker" || o.preconditioner == "kronecker_presb"))
-    n += "(amg-" + o.amg_smoother + ")";
+  std::string n = anisodwr::name(o.krylov) + "+" + anisodwr::name(o.preconditioner);
+  if (o.spatial_preconditioner == SpatialPreconditioner::amg && is_kronecker(o.preconditioner))
+    n += "(amg-" + anisodwr::name(o.amg_smoother) + ")";
   return n;
 }
 
 bool IterativeSlabSolver::needs_assembled_matrix(const IterativeOptions &o)
 {
-  return o.preconditioner != "kronecker" && o.preconditioner != "kronecker_presb" &&
-         o.preconditioner != "none";
+  return !is_kronecker(o.preconditioner) && o.preconditioner != Preconditioner::none;
 }
 
 void IterativeSlabSolver::setup(const SlabMatrix &K, bool transpose)
@@ -151,19 +138,19 @@ void IterativeSlabSolver::setup(const SlabMatrix &K, bool transpose)
   else if (K.terms && !needs_assembled_matrix(d.o))
     d.op = rcp(new KroneckerOperator(d.map, *K.terms, transpose));
   else
-    throw std::logic_error("IterativeSlabSolver: preconditioner " + d.o.preconditioner +
+    throw std::logic_error("IterativeSlabSolver: preconditioner " + anisodwr::name(d.o.preconditioner) +
                            " needs the assembled slab matrix");
-  const std::string &p = d.o.preconditioner;
+  const Preconditioner p = d.o.preconditioner;
   const LO n_blocks = static_cast<LO>(N / m);
-  if (p == "none")
+  if (p == Preconditioner::none)
     return;
-  if (p == "kronecker" || p == "kronecker_presb")
+  if (is_kronecker(p))
   {
     if (!K.split)
       throw std::logic_error("kronecker preconditioner needs the Kronecker split of K");
     d.prec = rcp(new KroneckerPreconditioner(d.map, *K.split, transpose, d.o));
   }
-  else if (p == "block_ilu")
+  else if (p == Preconditioner::block_ilu)
   {
     auto B = Tpetra::convertToBlockCrsMatrix(*d.K, static_cast<LO>(m));
     d.block_matrix = B;
@@ -212,22 +199,20 @@ struct BelosRun
     pl->set("Output Stream", Teuchos::rcp_implicit_cast<std::ostream>(belos_out));
     pl->set("Implicit Residual Scaling", "Norm of RHS");
     RCP<Belos::SolverManager<double, MV, OP>> solver;
-    if (o.krylov == "gmres" || o.krylov == "fgmres")
+    if (o.krylov == Krylov::gmres || o.krylov == Krylov::fgmres)
     {
       pl->set("Num Blocks", static_cast<int>(o.restart));
       pl->set("Maximum Restarts", static_cast<int>(o.max_iterations / o.restart + 1));
       pl->set("Explicit Residual Scaling", "Norm of RHS");
-      if (o.krylov == "fgmres")
+      if (o.krylov == Krylov::fgmres)
         pl->set("Flexible Gmres", true);
       solver = rcp(new Belos::BlockGmresSolMgr<double, MV, OP>(problem, pl));
       if (watch)
         solver->setDebugStatusTest(
             rcp(new StagnationTest(o.stagnation_window, o.stagnation_factor)));
     }
-    else if (o.krylov == "bicgstab")
-      solver = rcp(new Belos::BiCGStabSolMgr<double, MV, OP>(problem, pl));
     else
-      throw std::invalid_argument("unknown Krylov method '" + o.krylov + "'");
+      solver = rcp(new Belos::BiCGStabSolMgr<double, MV, OP>(problem, pl));
     return solver;
   }
 
@@ -336,7 +321,7 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
       xd[i] = x[i];
     }
   }
-  if (d.o.krylov == "bicgstab" && run.watch)
+  if (d.o.krylov == Krylov::bicgstab && run.watch)
     run.solve_in_chunks(stats);
   else
     run.solve_once(stats);

@@ -16,11 +16,6 @@
 
 namespace anisodwr
 {
-/// "none|ilut|riluk|block_jacobi|block_gauss_seidel|block_ilu|kronecker|kronecker_presb"
-const char *preconditioner_names();
-/// "ilu|amg" (solver.spatial_preconditioner)
-const char *spatial_preconditioner_names();
-
 /// K = T1 (x) S1 + T2 (x) S2 (Kronecker factors in the interleaved ordering, T2
 /// invertible, S1 and S2 on one sparsity pattern): the input of the Kronecker
 /// preconditioner. For the slab operator: T1 = D, S1 = Mc, T2 = tau Mhat, S2 = Ac.

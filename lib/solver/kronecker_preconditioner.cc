@@ -20,15 +20,8 @@ namespace anisodwr::tpetra
 KroneckerPreconditioner::KroneckerPreconditioner(const RCP<const Map> &slab_map,
                                                  const KronSplit &k, bool transpose,
                                                  const IterativeOptions &o)
-    : presb(o.preconditioner == "kronecker_presb"), slab_map(slab_map)
+    : presb(o.preconditioner == Preconditioner::kronecker_presb), slab_map(slab_map)
 {
-  if (o.spatial_preconditioner != "ilu" && o.spatial_preconditioner != "amg")
-    throw std::invalid_argument("unknown spatial preconditioner '" +
-                                o.spatial_preconditioner + "' (ilu or amg)");
-  if (o.amg_smoother != "ilu" && o.amg_smoother != "gauss_seidel" &&
-      o.amg_smoother != "chebyshev")
-    throw std::invalid_argument("unknown AMG smoother '" + o.amg_smoother +
-                                "' (ilu, gauss_seidel or chebyshev)");
   schur_form(k, transpose);
 
   const auto &S1 = *k.S1;
@@ -123,7 +116,7 @@ KroneckerPreconditioner::make_block(unsigned int j,
   }
   else
     blk.matrix = to_tpetra(space_map, S1, blk.shift, &S2, 1., transpose);
-  if (o.spatial_preconditioner == "amg")
+  if (o.spatial_preconditioner == SpatialPreconditioner::amg)
   {
     blk.amg = std::make_shared<AmgBlock>(*blk.matrix, blk.map.is_null() ? 1 : 2, o);
     blk.matrix = Teuchos::null; // ML works on its Epetra copy
@@ -132,7 +125,7 @@ KroneckerPreconditioner::make_block(unsigned int j,
   {
     IterativeOptions io = o;
     io.ilu_fill = std::max(0., std::round(o.ilu_fill));
-    blk.prec = make_ifpack2("riluk", blk.matrix, io, 1);
+    blk.prec = make_ifpack2(Preconditioner::riluk, blk.matrix, io, 1);
   }
   return blk;
 }

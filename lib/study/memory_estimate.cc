@@ -132,7 +132,7 @@ MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
   m.r = r;
   m.n_slabs = n_slabs;
   m.time_dependent = primal.scene.coefficients_depend_on_time();
-  m.krylov_vectors = prm.solver.restart + 2;
+  m.krylov_vectors = prm.solver.iterative.restart + 2;
   if (adjoint)
   {
     m.adjoints_stored = prm.adaptivity.per_goal_estimates ? 2 : 1;

@@ -32,25 +32,7 @@ GoalInput goal_input(const Parameters &prm)
 
 SlabSolverOptions slab_solver_options(const Parameters &prm)
 {
-  const SolverSection &s = prm.solver;
-  SlabSolverOptions o;
-  o.type = s.type;
-  o.reuse_factorization = s.reuse_factorization;
-  o.refinement_steps = s.refinement_steps;
-  o.auto_threshold = s.auto_threshold;
-  o.auto_memory_mb = s.auto_memory_mb;
-  o.fallback = s.fallback;
-  o.iterative.krylov = s.krylov;
-  o.iterative.preconditioner = s.preconditioner;
-  o.iterative.tolerance = s.tolerance;
-  o.iterative.restart = s.restart;
-  o.iterative.max_iterations = s.max_iterations;
-  o.iterative.ilu_fill = s.ilu_fill;
-  o.iterative.spatial_preconditioner = s.spatial_preconditioner;
-  o.iterative.amg_smoother = s.amg_smoother;
-  o.iterative.stagnation_window = s.stagnation_window;
-  o.iterative.stagnation_factor = s.stagnation_factor;
-  return o;
+  return prm.solver; // the section is the solver's options plus the DoF order
 }
 
 MarkingOptions marking_options(const Parameters &prm)
@@ -72,9 +54,10 @@ std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scen
   auto space = std::make_unique<Space<2>>(scene, tria, degree, stabilized ? d.delta0 : 0.,
                                           d.supg_length == SupgLength::streamline,
                                           d.supg_tau_factor);
-  const std::string &numbering = prm.solver.dof_numbering;
-  space->set_downstream_numbering(numbering == "downstream" ||
-                                  (numbering == "auto" && prm.solver.type != "direct"));
+  const DofNumbering numbering = prm.solver.dof_numbering;
+  space->set_downstream_numbering(
+      numbering == DofNumbering::downstream ||
+      (numbering == DofNumbering::automatic && prm.solver.type != SolverType::direct));
   space->setup();
   return space;
 }
