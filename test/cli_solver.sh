@@ -5,7 +5,7 @@
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
 cfg=$src/config/moving_hump.json
 common=(--set adaptivity.loops=2 --set solver.type=iterative --set solver.max_iterations=1
-  --set solver.preconditioner=ilut --set solver.fallback=none)
+  --set solver.preconditioner=ilut --set solver.ilu_fill=1 --set solver.fallback=none)
 
 out=$("$bin" run "$cfg" --output "$tmp/fail" "${common[@]}" 2>&1)
 rc=$?

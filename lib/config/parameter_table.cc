@@ -207,7 +207,7 @@ std::vector<Entry> solver_entries()
        "GMRES restart length (Krylov vectors kept)."},
       {"solver", "max_iterations", "500", k(&I::max_iterations), integer(1, 1000000),
        "Krylov iterations per slab solve before it counts as failed."},
-      {"solver", "ilu_fill", "1", k(&I::ilu_fill), real(0.),
+      {"solver", "ilu_fill", "2", k(&I::ilu_fill), real(0.),
        "ILU(k) level k (riluk, block_ilu, kronecker; rounded) or ILUT fill ratio "
        "(ilut, >= 1)."},
       {"solver", "spatial_preconditioner", "ilu", k(&I::spatial_preconditioner), by_name,

@@ -89,7 +89,7 @@ struct IterativeOptions
   double tolerance = 1e-10;          ///< on ||b - K x|| / ||b||
   unsigned int restart = 30;         ///< GMRES restart length
   unsigned int max_iterations = 500;
-  double ilu_fill = 1.;  ///< RILUK/RBILUK level of fill (rounded), ILUT fill ratio
+  double ilu_fill = 2.;  ///< RILUK/RBILUK level of fill (rounded), ILUT fill ratio
   double ilut_drop = 0.; ///< ILUT drop tolerance
   /// Inner solver of the kronecker* preconditioners per temporal mode block: ILU
   /// (Ifpack2 ILU(k), ilu_fill) or AMG (ML smoothed aggregation for nonsymmetric
