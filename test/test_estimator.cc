@@ -239,31 +239,48 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
                std::invalid_argument);
 }
 
+/// The moving hump (SUPG on) on make_mesh() refined `refinements` more times: Q1 primal
+/// and Q2 adjoint in dG(1) on 3 slabs, the scene's two point goals at T.
+struct HumpProblem
+{
+  explicit HumpProblem(unsigned int refinements)
+      : scene(create_scene<2>(Parameters::from_overrides({"scene.name=moving_hump"})))
+  {
+    make_mesh(tria);
+    tria.refine_global(refinements);
+    primal.setup();
+    adjoint.setup();
+    SlabOperator<2> op(primal, basis, SlabSolverOptions::direct(true));
+    SlabOperator<2> opq(adjoint, basis, SlabSolverOptions::direct(true));
+    U = march_primal(primal, mesh, basis, op, MarchOptions{});
+    goals = scene->default_goals(0.1);
+    Z = march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, goals),
+                      MarchOptions{});
+  }
+  Indicators<2> estimate(SpaceIndicator form) const
+  {
+    return anisodwr::estimate(primal, adjoint, mesh, basis, U, Z, goals,
+                              TimeIndicator::average, nullptr, form);
+  }
+
+  std::unique_ptr<Scene<2>> scene;
+  Triangulation<2> tria;
+  Space<2> primal{*scene, tria, 1, 1.}, adjoint{*scene, tria, 2, 1.};
+  const TemporalBasis basis{1};
+  const TimeMesh mesh = TimeMesh::uniform(0.5, 3);
+  std::vector<GoalSpec> goals;
+  std::vector<Vector<double>> U, Z;
+};
+
 // The parts of eta_h reported in loops.csv add up to eta_h in both forms: average =
 // 1/2 rho + adjoint half + S, primal_residual = rho + S (no adjoint half); the primal
 // half and the SUPG term do not depend on the form. Moving hump (SUPG on), Q1/Q2 on the
 // anisotropic mesh, dG(1), a point goal at T.
 TEST(SpaceIndicator, PartsSumToEtaHInBothForms)
 {
-  const auto scene = create_scene<2>(Parameters::from_overrides({"scene.name=moving_hump"}));
-  Triangulation<2> tria;
-  make_mesh(tria);
-  tria.refine_global(1);
-  Space<2> primal(*scene, tria, 1, 1.), adjoint(*scene, tria, 2, 1.);
-  primal.setup();
-  adjoint.setup();
-  const TemporalBasis basis(1);
-  const TimeMesh mesh = TimeMesh::uniform(0.5, 3);
-  SlabOperator<2> op(primal, basis, SlabSolverOptions::direct(true));
-  SlabOperator<2> opq(adjoint, basis, SlabSolverOptions::direct(true));
-  const auto U = march_primal(primal, mesh, basis, op, MarchOptions{});
-  const auto goals = scene->default_goals(0.1);
-  const auto Z = march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, goals),
-                               MarchOptions{});
-  const auto avg = estimate(primal, adjoint, mesh, basis, U, Z, goals,
-                            TimeIndicator::average, nullptr, SpaceIndicator::average);
-  const auto pr = estimate(primal, adjoint, mesh, basis, U, Z, goals,
-                           TimeIndicator::average, nullptr, SpaceIndicator::primal_residual);
+  const HumpProblem hump(1);
+  const auto avg = hump.estimate(SpaceIndicator::average);
+  const auto pr = hump.estimate(SpaceIndicator::primal_residual);
   const double scale = std::abs(avg.eta_h_rho) + std::abs(avg.eta_h_rhostar) +
                        std::abs(avg.eta_h_supg);
   ASSERT_GT(scale, 0.);
@@ -288,28 +305,13 @@ TEST(SpaceIndicator, PartsSumToEtaHInBothForms)
 // of a cell's terms depend on the cell visited before it).
 TEST(Estimator, ThreadCountDoesNotChangeTheIndicators)
 {
-  const auto scene = create_scene<2>(Parameters::from_overrides({"scene.name=moving_hump"}));
-  Triangulation<2> tria;
-  make_mesh(tria);
-  tria.refine_global(2);
-  Space<2> primal(*scene, tria, 1, 1.), adjoint(*scene, tria, 2, 1.);
-  primal.setup();
-  adjoint.setup();
-  const TemporalBasis basis(1);
-  const TimeMesh mesh = TimeMesh::uniform(0.5, 3);
-  SlabOperator<2> op(primal, basis, SlabSolverOptions::direct(true));
-  SlabOperator<2> opq(adjoint, basis, SlabSolverOptions::direct(true));
-  const auto U = march_primal(primal, mesh, basis, op, MarchOptions{});
-  const auto goals = scene->default_goals(0.1);
-  const auto Z = march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, goals),
-                               MarchOptions{});
-  ASSERT_GT(tria.n_active_cells(), 4 * 64u); // several chunks
+  const HumpProblem hump(2);
+  ASSERT_GT(hump.tria.n_active_cells(), 4 * 64u); // several chunks
   std::vector<Indicators<2>> runs;
   for (const unsigned int threads : {1u, 3u})
   {
     MultithreadInfo::set_thread_limit(threads);
-    runs.push_back(estimate(primal, adjoint, mesh, basis, U, Z, goals, TimeIndicator::average,
-                            nullptr, SpaceIndicator::average));
+    runs.push_back(hump.estimate(SpaceIndicator::average));
   }
   MultithreadInfo::set_thread_limit();
   const auto &a = runs[0], &b = runs[1];

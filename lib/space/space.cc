@@ -268,27 +268,11 @@ void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
 
 template <int dim> void Space<dim>::assemble_initial(double tau, Vector<double> &U0) const
 {
-  U0.reinit(dofs.n_dofs());
-  const QGauss<dim> quad(fe.degree + 2);
-  FEValues<dim> fv(map, fe, quad,
-                   update_values | update_gradients | update_quadrature_points |
-                       update_JxW_values);
-  const unsigned int n = fe.n_dofs_per_cell();
-  std::vector<types::global_dof_index> idx(n);
-  for (const auto &cell : dofs.active_cell_iterators())
-  {
-    fv.reinit(cell);
-    cell->get_dof_indices(idx);
-    const double dK = delta(cell, tau);
-    for (unsigned int q = 0; q < quad.size(); ++q)
-    {
-      const Point<dim> &x = fv.quadrature_point(q);
-      const Tensor<1, dim> b = scene.convection(x, 0.);
-      const double u0 = scene.initial_value(x) * fv.JxW(q);
-      for (unsigned int i = 0; i < n; ++i)
-        U0(idx[i]) += u0 * (fv.shape_value(i, q) + dK * (b * fv.shape_grad(i, q)));
-    }
-  }
+  std::vector<Vector<double>> F;
+  assemble_volume_loads(
+      1, tau, [&](const Point<dim> &x, unsigned int) { return scene.initial_value(x); },
+      [&](const Point<dim> &x, unsigned int) { return scene.convection(x, 0.); }, F);
+  U0 = std::move(F[0]);
 }
 
 template class Space<2>;
