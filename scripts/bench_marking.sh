@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Marking strategies on config/hemker.json (same loops, same theta_h = 1/3): joint
-# (cell, direction) ranking, per_direction (SCENES.md's reference rule), and cell
-# marking with kappa = 0.5, 0.75, 1. Prints and writes OUTDIR/marking.csv (one row per
-# variant and loop: N_space, growth, J_1, J_2, y_layer, y_layer * N_space, cells marked
-# in x / y / both, closure) and OUTDIR/marking.md; charts y_layer and J_1 against N_space
-# (OUTDIR/marking.png).
+# (cell, direction) ranking, per_direction (the reference rule, doc/method.md §9), and
+# cell marking with kappa = 0.5, 0.75, 1. Prints and writes OUTDIR/marking.csv (one row
+# per variant and loop: N_space, growth, J_1, J_2, y_layer, y_layer * N_space, cells
+# marked in x / y / both, closure) and OUTDIR/marking.md; charts y_layer and J_1 against
+# N_space (OUTDIR/marking.png).
 # Usage: scripts/bench_marking.sh [OUTDIR] [LOOPS]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"

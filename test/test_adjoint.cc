@@ -1,6 +1,6 @@
-// Goal functionals and the adjoint march (SPEC §3-4): the mollifier integrates to 1,
-// the transposed space-time operator is the transpose, and with q = p the goal value
-// J(u_h) = <J, U> equals the adjoint form <F, Z>.
+// Goal functionals and the adjoint march (doc/method.md §4-5): the mollifier integrates
+// to 1, the transposed space-time operator is the transpose, and with q = p the goal
+// value J(u_h) = <J, U> equals the adjoint form <F, Z>.
 #include "config/parameters.h"
 #include "goal/goal.h"
 #include "slab/adjoint_march.h"

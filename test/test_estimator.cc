@@ -1,8 +1,8 @@
-// Localization of the DWR indicators (SPEC §5): the cell-wise forms of the estimator
-// (strong cell residual + half flux jumps + boundary terms + temporal jumps for rho;
-// cell-wise weak forms for the adjoint residual; SUPG terms) summed over all cells
-// equal the global weak forms, computed independently from the assembled Kronecker
-// slab operator, to round-off: random continuous functions (hanging nodes,
+// Localization of the DWR indicators (doc/method.md §6): the cell-wise forms of the
+// estimator (strong cell residual + half flux jumps + boundary terms + temporal jumps
+// for rho; cell-wise weak forms for the adjoint residual; SUPG terms) summed over all
+// cells equal the global weak forms, computed independently from the assembled
+// Kronecker slab operator, to round-off: random continuous functions (hanging nodes,
 // anisotropic cells), polynomial-in-space data, time-dependent b and alpha.
 #include "adaptivity/estimator.h"
 #include "config/parameters.h"

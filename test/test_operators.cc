@@ -1,5 +1,5 @@
-// The estimator's reconstruction operators (SPEC §5): R_i / R_h, the patch lift I_2h,
-// the directional lift I_2h,i on isotropic and anisotropic meshes, the Radau
+// The estimator's reconstruction operators (doc/method.md §7): R_i / R_h, the patch
+// lift I_2h, the directional lift I_2h,i on isotropic and anisotropic meshes, the Radau
 // reconstruction E_tau, and the exact goal values.
 #include "adaptivity/spatial_operators.h"
 #include "adaptivity/temporal_reconstruction.h"

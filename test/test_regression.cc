@@ -133,7 +133,7 @@ TEST(Regression, HemkerFirstThreeLoops)
   const Table probes = read_csv(dir + "/probes.csv");
   ASSERT_EQ(got.size(), 3u);
   ASSERT_EQ(probes.size(), 3u);
-  EXPECT_EQ(got[0].at("N_space"), 196.) << "SCENES.md: loop 1 has 196 Q1 DoFs";
+  EXPECT_EQ(got[0].at("N_space"), 196.) << "doc/method.md §10: loop 1 has 196 Q1 DoFs";
   for (std::size_t l = 0; l < got.size(); ++l)
   {
     got[l].insert(probes[l].begin(), probes[l].end());

@@ -1,6 +1,7 @@
 #pragma once
-// The cell integrals of the DWR estimator (SPEC §5) on one cell and one slab, as linear
-// functionals on W-local coefficients (internal to lib/adaptivity/; see estimator.h).
+// The cell integrals of the DWR estimator (doc/method.md §6) on one cell and one slab,
+// as linear functionals on W-local coefficients (internal to lib/adaptivity/; see
+// estimator.h).
 //   cell_kernel.cc               the cell, its faces and neighbours (hanging nodes)
 //   cell_functionals.cc          rho(u), S(u), A(.)(z), S'(., z) and J' on the cell
 //   adjoint_cell_matrices.cc     A and S' as cell matrices (coefficients constant in t)
@@ -44,7 +45,7 @@ struct SlabFunction
 /// F(v); with jump_of_v the jump slot takes v^+ - v^- (v.minus, where given).
 double apply(const SlabFunctional &F, const SlabFunction &v, bool jump_of_v);
 
-/// The cell integrals of SPEC §5 on one cell and one slab.
+/// The cell integrals of doc/method.md §6 on one cell and one slab.
 template <int dim> class CellKernel
 {
 public:

@@ -9,7 +9,7 @@ namespace anisodwr
 /// Which form of the temporal error representation eta_tau uses.
 enum class TimeIndicator
 {
-  /// 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u) (SPEC §5)
+  /// 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u) (doc/method.md §8)
   average,
   /// rho*(u,z)(E u - u): the adjoint residual weighted by the primal's temporal error.
   /// J(e) = rho*(u, z_tau h)(u - u_tau h) holds exactly for the discrete adjoint, so
@@ -28,8 +28,8 @@ enum class TimeIndicator
 /// Which form of the spatial error representation eta_h,i uses.
 enum class SpaceIndicator
 {
-  /// 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - u) + S terms (SPEC §5); on a
-  /// (cell, direction) without a lift only the primal half
+  /// 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - u) + S terms
+  /// (doc/method.md §8); on a (cell, direction) without a lift only the primal half
   average,
   /// rho(u)(z - R_i z) + S(u)(R_h z) share: the primal-residual form alone, which needs
   /// no lift of u (exact up to z ~ z_tau h and the directional split)

@@ -1,5 +1,6 @@
 #pragma once
-// The space-time DWR indicators of SPEC §5, localized cell by cell and slab by slab:
+// The space-time DWR indicators of doc/method.md §6 and §8, localized cell by cell
+// and slab by slab:
 //
 //   eta_tau   = 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u)
 //   eta_h,i   = 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - u)

@@ -1,7 +1,7 @@
 #pragma once
-// Marking and refinement (SPEC §6): per-direction marking of the theta_h fraction of
-// cells with the largest |eta_h,i^K| (a cell marked in every direction is refined
-// isotropically), isotropic marking by |eta_h^K|, uniform refinement, optional
+// Marking and refinement (doc/method.md §9): per-direction marking of the theta_h
+// fraction of cells with the largest |eta_h,i^K| (a cell marked in every direction is
+// refined isotropically), isotropic marking by |eta_h^K|, uniform refinement, optional
 // coarsening, bisection of the theta_tau fraction of slabs with the largest
 // |eta_tau^n|, and the aspect ratio of the mesh.
 #include "adaptivity/estimator.h"
@@ -19,8 +19,9 @@ struct MarkingOptions
   AdaptivityMode mode = AdaptivityMode::anisotropic;
   /// anisotropic mode: joint ranks all (cell, direction) pairs by |eta_h,i^K| together
   /// and marks the theta_h fraction of them; per_direction marks the theta_h fraction
-  /// of cells separately in each direction (SPEC §6 literally; a cell whose indicators
-  /// are all large is then cut in every direction even if one dominates).
+  /// of cells separately in each direction (the reference rule, doc/method.md §9; a
+  /// cell whose indicators are all large is then cut in every direction even if one
+  /// dominates).
   /// cell: mark the theta_h fraction of cells by sum_i |eta_h,i^K|; a marked cell is
   /// cut in direction i iff |eta_h,i^K| >= kappa * max_j |eta_h,j^K| (the directions
   /// the cell needs, not every direction whose pair passed a global threshold).

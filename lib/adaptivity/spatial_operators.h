@@ -1,5 +1,5 @@
 #pragma once
-// The cell-wise spatial operators of the estimator (SPEC §5), acting into the
+// The cell-wise spatial operators of the estimator (doc/method.md §7), acting into the
 // "weight element" W = FE_Q(w), w = max(q, 2p), on each active cell K:
 //
 //   R_i  (i < dim): replaces the dependence in direction i by its degree-p
@@ -10,7 +10,7 @@
 //   I_2h,i: directional lift: degree 2p in direction i, degree p (K's own nodes) in
 //        the others. The 1D patch along i is K plus one partner cell P:
 //          1. K's sibling across its inner i-face, if K's parent is cut in i and the
-//             sibling is active (the patch of SPEC §5);
+//             sibling is active (the patch of doc/method.md §7);
 //          2. otherwise K's face neighbour across its lower, then upper i-face, if that
 //             face is not refined (the neighbour is as large as K or coarser);
 //          3. otherwise there is no lift (I_2h,i u - u := 0 on K).

@@ -1,6 +1,6 @@
 #pragma once
-// The Radau reconstruction E_tau in time (SPEC §5), as coefficient arrays on the
-// reference slab (0,1]:
+// The Radau reconstruction E_tau in time (doc/method.md §7), as coefficient arrays on
+// the reference slab (0,1]:
 //
 //   primal:  E u is the polynomial of degree r+1 with E u(s_k) = u(s_k) at the right
 //            Radau nodes and E u(0) = u(t_{n-1}^-);

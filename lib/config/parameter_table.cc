@@ -107,7 +107,7 @@ std::vector<Entry> scene_entries()
   const auto m = [](auto member) { return at(&Parameters::scene, member); };
   return {
       {"scene", "name", "moving_hump", m(&S::name), by_name,
-       "Benchmark scene (see SCENES.md): moving_hump, manufactured, heat, "
+       "Benchmark scene (see doc/method.md §10): moving_hump, manufactured, heat, "
        "boundary_layer or hemker."},
       {"scene", "variant", "", m(&S::variant), text,
        "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
@@ -135,7 +135,7 @@ std::vector<Entry> discretization_entries()
       {"discretization", "delta0", "1.0", m(&S::delta0), real(0.),
        "SUPG parameter: delta_K = delta0 * |K|^(1/d); 0 turns SUPG off."},
       {"discretization", "supg_length", "volume", m(&S::supg_length), by_name,
-       "Cell length h_K in delta_K = delta0 h_K: volume = |K|^(1/d) (SPEC); streamline = "
+       "Cell length h_K in delta_K = delta0 h_K: volume = |K|^(1/d) (doc/method.md §3); streamline = "
        "the "
        "length of K along b at its centre (t = 0), for anisotropic cells across layers."},
       {"discretization", "supg_tau_factor", "1", m(&S::supg_tau_factor), real(0.),
@@ -347,13 +347,13 @@ std::vector<Entry> adaptivity_entries()
        "Polynomial degree q of the adjoint; 0 means q = 2p."},
       {"adaptivity", "space_indicator", "average", m(&S::space_indicator), by_name,
        "Form of eta_h,i. average: 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - "
-       "u) + SUPG terms (SPEC; where a cell has no directional lift only the primal "
+       "u) + SUPG terms (doc/method.md §8; where a cell has no directional lift only the primal "
        "half); primal_residual: rho(u)(z - R_i z) + S(u)(R_h z), the primal residual "
        "alone, which needs no lift of u."},
       {"adaptivity", "adjoint_stabilization", "transposed", m(&S::adjoint_stabilization),
        by_name,
        "transposed: the adjoint is the transpose of the SUPG-stabilized primal operator "
-       "in degree q (SPEC); none: the adjoint is the Galerkin (delta = 0) discretization "
+       "in degree q (doc/method.md §5); none: the adjoint is the Galerkin (delta = 0) discretization "
        "of the continuous adjoint, consistent with it; the estimator's S terms still use "
        "the primal's delta_K."},
   };

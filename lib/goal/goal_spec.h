@@ -1,5 +1,5 @@
 #pragma once
-// The description of one goal functional (SPEC §3), as read from the config.
+// The description of one goal functional (doc/method.md §4), as read from the config.
 #include "config/choice.h"
 
 #include <string>

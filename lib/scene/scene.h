@@ -72,8 +72,8 @@ template <int dim> struct LoadTerm
   std::function<double(const dealii::Point<dim> &)> g;
 };
 
-/// Derived outputs of u_h(T) a scene asks for (SCENES.md, hemker): cut lines sampled
-/// to CSV, the width of a layer along a ray, over- and undershoots.
+/// Derived outputs of u_h(T) a scene asks for (doc/method.md §10, hemker): cut lines
+/// sampled to CSV, the width of a layer along a ray, over- and undershoots.
 template <int dim> struct ProbeSpec
 {
   struct Line
@@ -125,8 +125,8 @@ public:
   virtual double neumann_value(const dealii::Point<dim> &x,
                                const dealii::Tensor<1, dim> &n, double t) const;
 
-  /// The scene's goal functionals (SCENES.md); `radius` is the mollifier radius of
-  /// point goals. Default: the value at the domain's centre (0.5, 0.5) at T.
+  /// The scene's goal functionals (doc/method.md §10); `radius` is the mollifier radius
+  /// of point goals. Default: the value at the domain's centre (0.5, 0.5) at T.
   virtual std::vector<GoalSpec> default_goals(double radius) const;
 
   /// The smallest axis-parallel box holding the domain: {lower-left, upper-right}.

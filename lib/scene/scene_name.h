@@ -1,5 +1,5 @@
 #pragma once
-// scene.name: the benchmark scenes (SCENES.md), with their name table.
+// scene.name: the benchmark scenes (doc/method.md §10), with their name table.
 #include "config/choice.h"
 
 namespace anisodwr

@@ -1,5 +1,5 @@
 #pragma once
-// The benchmark scenes of SCENES.md (2D).
+// The benchmark scenes of doc/method.md §10 (2D).
 #include "scene/scene.h"
 
 namespace anisodwr
@@ -106,13 +106,13 @@ private:
   double (*T)(double);
   double (*dT)(double);
 };
-/// Nonstationary Hemker problem (SCENES.md): flow b = (1, 0) past the unit circle in
-/// (-3,8)x(-3,3), u = 1 on the circle, u = 0 at the inflow x = -3, homogeneous Neumann
-/// elsewhere, u_0 = 0, f = 0, alpha = 0; no exact solution. Boundary ids: 0 inflow,
-/// 1 circle (Dirichlet), 2 the rest (Neumann). The circle carries a PolarManifold
-/// (manifold id 0), the cells of the square (-3,3)^2 a TransfiniteInterpolationManifold
-/// (id 1); the FE map is MappingQ(1), so the discrete boundary is the polygon through
-/// the refined vertices on the circle.
+/// Nonstationary Hemker problem (doc/method.md §10): flow b = (1, 0) past the unit
+/// circle in (-3,8)x(-3,3), u = 1 on the circle, u = 0 at the inflow x = -3, homogeneous
+/// Neumann elsewhere, u_0 = 0, f = 0, alpha = 0; no exact solution. Boundary ids:
+/// 0 inflow, 1 circle (Dirichlet), 2 the rest (Neumann). The circle carries a
+/// PolarManifold (manifold id 0), the cells of the square (-3,3)^2 a
+/// TransfiniteInterpolationManifold (id 1); the FE map is MappingQ(1), so the discrete
+/// boundary is the polygon through the refined vertices on the circle.
 class Hemker : public Scene<2>
 {
 public:

@@ -1,5 +1,5 @@
 #pragma once
-// Backward march of the adjoint of the stabilized discrete problem (SPEC §4):
+// Backward march of the adjoint of the stabilized discrete problem (doc/method.md §5):
 //   K_n^T Z_n = J_n + (y e^T (x) M(t_n)^T) Z_{n+1},   Z_{N+1} = 0,
 // with the same SlabOperator code (transposed solve) in the adjoint space.
 #include "goal/goal.h"

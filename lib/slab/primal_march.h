@@ -1,5 +1,5 @@
 #pragma once
-// Forward march of the primal problem over all slabs (SPEC §2):
+// Forward march of the primal problem over all slabs (doc/method.md §2):
 //   K_n U_n = F_n + (e y^T (x) M(t_{n-1})) U_{n-1},   at n = 1 the SUPG initial term.
 #include "slab/slab_operator.h"
 #include "time/time_mesh.h"

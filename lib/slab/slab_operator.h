@@ -1,6 +1,6 @@
 #pragma once
-// The slab operator K_n of SPEC §2 as a Kronecker sum, for one space and one dG(r)
-// basis, with its condensed (constrained) form solved by UMFPACK or, per
+// The slab operator K_n of doc/method.md §2 as a Kronecker sum, for one space and one
+// dG(r) basis, with its condensed (constrained) form solved by UMFPACK or, per
 // SlabSolverOptions, by a Belos Krylov method (lib/solver/iterative_solver.h).
 //
 //   K_n = sum_q w_q [ l(s_q) l'(s_q)^T (x) M(t_q) + tau l(s_q) l(s_q)^T (x) A(t_q) ]

@@ -1,7 +1,7 @@
 #pragma once
 // One spatial finite element space on a (possibly anisotropically refined) mesh:
 // FE_Q(p), DoFs, hanging-node + Dirichlet constraints, the sparsity pattern, and
-// the assembly of the SUPG spatial matrices and load vectors of SPEC §2.
+// the assembly of the SUPG spatial matrices and load vectors of doc/method.md §2-3.
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/mapping_q.h>
@@ -20,9 +20,9 @@
 
 namespace anisodwr
 {
-/// Spatial matrices at one time t (SPEC §2), unconstrained (M, A) and condensed with
-/// the homogeneous constraints (Mc = C^T M C, Ac = C^T A C, with a positive diagonal on
-/// constrained rows). All four share Space::sparsity().
+/// Spatial matrices at one time t (doc/method.md §2), unconstrained (M, A) and condensed
+/// with the homogeneous constraints (Mc = C^T M C, Ac = C^T A C, with a positive diagonal
+/// on constrained rows). All four share Space::sparsity().
 struct SpatialMatrices
 {
   dealii::SparseMatrix<double> M, A, Mc, Ac;
@@ -31,7 +31,7 @@ struct SpatialMatrices
 template <int dim> class Space
 {
 public:
-  /// SUPG: delta_K = delta0 h_K with h_K = |K|^{1/dim} (SPEC §2), or, if
+  /// SUPG: delta_K = delta0 h_K with h_K = |K|^{1/dim} (doc/method.md §3), or, if
   /// `streamline_length`, h_K = the length of K along b (for anisotropic cells); if
   /// tau_factor > 0, delta_K <= tau_factor * tau_n on a slab of length tau_n (the
   /// stability bound of SUPG with the time derivative in the test function).

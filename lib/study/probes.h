@@ -1,7 +1,7 @@
 #pragma once
-// Derived outputs of a finite element function u_h (SCENES.md, hemker): values along a
-// segment, first crossings of a level found by bisection on u_h itself, a layer width,
-// and over-/undershoots.
+// Derived outputs of a finite element function u_h (doc/method.md §10, hemker): values
+// along a segment, first crossings of a level found by bisection on u_h itself, a layer
+// width, and over-/undershoots.
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/vector.h>
