@@ -3,6 +3,7 @@
 // A(.)(z) and S'(., z), and J'.
 #include "adaptivity/cell_kernel.h"
 
+#include "space/weak_form.h"
 #include "time/slab_vector.h"
 
 namespace anisodwr
@@ -18,7 +19,7 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
   const unsigned int nq = quad.size();
   rho.reset(g.size(), nw);
   supg.reset(g.size(), nw);
-  const double eps = scene.epsilon, delta = primal.bounded_delta(delta_h, tau);
+  const double delta = primal.bounded_delta(delta_h, tau);
   Vector<double> &c = scratch[0], &ct = scratch[1];
   c.reinit(np, true);
   ct.reinit(np, true);
@@ -39,14 +40,13 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
         grad += c(l) * fv_p.shape_grad(l, q);
         lap += c(l) * trace(fv_p.shape_hessian(l, q));
       }
-      const Tensor<1, dim> b = scene.convection(x, t);
-      const double R =
-          scene.rhs(x, t) + eps * lap - ut - b * grad - scene.reaction(x, t) * uh;
+      const auto cf = weak_form::coefficients(scene, x, t);
+      const double R = weak_form::residual(cf, scene.rhs(x, t), ut, uh, grad, lap);
       const double jx = fv_p.JxW(q) * wt;
       for (unsigned int l = 0; l < nw; ++l)
       {
         rho.val[m](l) += jx * R * fv_w.shape_value(l, q);
-        supg.val[m](l) -= jx * delta * R * (b * fv_w.shape_grad(l, q));
+        supg.val[m](l) -= jx * R * weak_form::supg_test(delta, cf.b, fv_w.shape_grad(l, q));
       }
     }
     add_face_terms(m, t, wt, Un, c, rho);
@@ -117,7 +117,7 @@ void CellKernel<dim>::add_temporal_jump(double t0, double delta, const Vector<do
     for (unsigned int l = 0; l < nw; ++l)
     {
       rho.jump(l) -= fv_p.JxW(q) * jump * fv_w.shape_value(l, q);
-      supg.jump(l) += fv_p.JxW(q) * delta * jump * (b * fv_w.shape_grad(l, q));
+      supg.jump(l) += fv_p.JxW(q) * jump * weak_form::supg_test(delta, b, fv_w.shape_grad(l, q));
     }
   }
 }
@@ -147,7 +147,7 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau, const SlabFuncti
     A.jump *= scale;
     return;
   }
-  const double eps = scene.epsilon, delta = primal.bounded_delta(delta_h, tau);
+  const double delta = primal.bounded_delta(delta_h, tau);
   for (unsigned int m = 0; m <= g.size(); ++m) // m == g.size(): the jump at t_{n-1}^+
   {
     const bool jump = m == g.size();
@@ -163,10 +163,10 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau, const SlabFuncti
         zq += z(l) * fv_w.shape_value(l, q);
         gz += z(l) * fv_w.shape_grad(l, q);
       }
-      const Tensor<1, dim> b = scene.convection(x, t);
-      const double alpha = scene.reaction(x, t), jx = wt * fv_p.JxW(q);
+      const auto cf = weak_form::coefficients(scene, x, t);
+      const double jx = wt * fv_p.JxW(q);
       // the test side: zq (A) or delta b.grad y (S')
-      const double test = supg ? delta * (b * gz) : zq;
+      const double test = supg ? weak_form::supg_test(delta, cf.b, gz) : zq;
       for (unsigned int l = 0; l < nw; ++l)
       {
         const double phi = fv_w.shape_value(l, q);
@@ -179,10 +179,9 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau, const SlabFuncti
         A.dt[m](l) += jx * phi * test;
         if (supg)
           A.val[m](l) +=
-              jx * (-eps * trace(fv_w.shape_hessian(l, q)) + b * gphi + alpha * phi) *
-              test;
+              jx * weak_form::strong(cf, phi, gphi, trace(fv_w.shape_hessian(l, q))) * test;
         else
-          A.val[m](l) += jx * (eps * (gphi * gz) + (b * gphi + alpha * phi) * zq);
+          A.val[m](l) += jx * weak_form::galerkin(cf, phi, gphi, zq, gz);
       }
     }
   }

@@ -88,10 +88,6 @@ std::shared_ptr<PatternBase> real(double lo)
 {
   return std::make_shared<P::Double>(lo);
 }
-std::shared_ptr<PatternBase> choice(const std::string &s)
-{
-  return std::make_shared<P::Selection>(s);
-}
 const std::shared_ptr<PatternBase> boolean = std::make_shared<P::Bool>();
 const std::shared_ptr<PatternBase> text = std::make_shared<P::Anything>();
 /// the pattern of an enum member: the Selection of its names (Binding::choices)

@@ -1,5 +1,7 @@
 #include "space/space.h"
 
+#include "space/weak_form.h"
+
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_renumbering.h>
@@ -107,7 +109,6 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
   const unsigned int n = fe.n_dofs_per_cell();
   FullMatrix<double> cm(n, n), ca(n, n);
   std::vector<types::global_dof_index> idx(n);
-  const double eps = scene.epsilon;
   for (const auto &cell : dofs.active_cell_iterators())
   {
     fv.reinit(cell);
@@ -116,23 +117,23 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
     const double dK = delta(cell, tau);
     for (unsigned int q = 0; q < quad.size(); ++q)
     {
-      const Point<dim> &x = fv.quadrature_point(q);
-      const Tensor<1, dim> b = scene.convection(x, t);
-      const double alpha = scene.reaction(x, t), JxW = fv.JxW(q);
+      const auto c = weak_form::coefficients(scene, fv.quadrature_point(q), t);
+      const double JxW = fv.JxW(q);
       for (unsigned int i = 0; i < n; ++i)
       {
         const double phi_i = fv.shape_value(i, q);
         const Tensor<1, dim> grad_i = fv.shape_grad(i, q);
-        const double supg_i = dK * (b * grad_i);
+        const double supg_i = weak_form::supg_test(dK, c.b, grad_i);
         for (unsigned int j = 0; j < n; ++j)
         {
           const double phi_j = fv.shape_value(j, q);
           const Tensor<1, dim> grad_j = fv.shape_grad(j, q);
-          const double conv_react_j = b * grad_j + alpha * phi_j;
-          const double strong_j = -eps * trace(fv.shape_hessian(j, q)) + conv_react_j;
+          const double strong_j =
+              weak_form::strong(c, phi_j, grad_j, trace(fv.shape_hessian(j, q)));
           cm(i, j) += phi_j * (phi_i + supg_i) * JxW;
-          ca(i, j) +=
-              (eps * (grad_j * grad_i) + conv_react_j * phi_i + strong_j * supg_i) * JxW;
+          ca(i, j) += (weak_form::galerkin(c, phi_j, grad_j, phi_i, grad_i) +
+                       strong_j * supg_i) *
+                      JxW;
         }
       }
     }
@@ -187,7 +188,8 @@ void Space<dim>::assemble_volume_loads(
         {
           const Tensor<1, dim> bq = b(x, k);
           for (unsigned int i = 0; i < n; ++i)
-            cf(i) += fq * (fv.shape_value(i, q) + dK * (bq * fv.shape_grad(i, q)));
+            cf(i) +=
+                fq * (fv.shape_value(i, q) + weak_form::supg_test(dK, bq, fv.shape_grad(i, q)));
         }
       }
       for (unsigned int i = 0; i < n; ++i)
