@@ -100,7 +100,6 @@ SlabOperator<dim>::SlabOperator(const Space<dim> &space, const TemporalBasis &ba
     : space(space), basis(basis), opt(options), reuse(options.reuse_factorization),
       lu(options.refinement_steps)
 {
-  make_kron_sparsity(space.sparsity(), basis.n_dofs(), pattern);
 }
 
 template <int dim>
@@ -110,21 +109,35 @@ template <int dim>
 void SlabOperator<dim>::assemble_matrix()
 {
   Timer timer;
+  if (pattern.n_rows() == 0)
+    make_kron_sparsity(space.sparsity(), basis.n_dofs(), pattern);
   assemble_kron(terms_cond, pattern, K);
   k_assembled = true;
   time.assemble_slab += timer.wall_time();
 }
 
 template <int dim>
-void SlabOperator<dim>::factorize()
+void SlabOperator<dim>::factorize(bool release)
 {
   if (!k_assembled)
     assemble_matrix();
   Timer timer;
-  lu.factorize(K);
+  const auto n = K.m();
+  if (release)
+  {
+    // the matrices K was built from, K itself once UMFPACK has its copy
+    release_condensed();
+    lu.analyze(K);
+    K.clear();
+    pattern.reinit(0, 0, 0);
+    k_assembled = false;
+    lu.factorize();
+  }
+  else
+    lu.factorize(K);
   time.factorize += timer.wall_time();
   time.factor_mb = std::max(time.factor_mb, lu.info().factor_mb);
-  record_lu(K.m(), space.degree(), basis.n_dofs(), lu.info().peak_mb);
+  record_lu(n, space.degree(), basis.n_dofs(), lu.info().peak_mb);
   ++time.n_factorizations;
   lu_valid = true;
 }
@@ -167,10 +180,11 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
   if (constant)
   {
     // delta_K <= c tau_n: a new slab length needs new spatial matrices
-    if (mats.empty() || (space.delta_depends_on_tau() && !same_tau))
+    if (mats.empty() || condensed_released || (space.delta_depends_on_tau() && !same_tau))
     {
       mats.resize(1);
       space.assemble_matrices(0., tau_n, mats[0]);
+      condensed_released = false;
     }
     FullMatrix<double> tM(basis.mass());
     tM *= tau_n;
@@ -227,10 +241,23 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
   if (!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative))
     assemble_matrix();
   if (!use_iterative)
-    factorize();
+    // UMFPACK without iterative refinement reads neither K nor its copy of K in the
+    // solves, and a reused factorization needs no condensed matrices until the slab
+    // length changes: the march keeps only M (the jump) and A (the Dirichlet lift).
+    factorize(constant && reuse && opt.refinement_steps == 0);
   factorized = true;
   t0 = t_start;
   tau = tau_n;
+}
+
+template <int dim>
+void SlabOperator<dim>::release_condensed()
+{
+  mats[0].Mc.clear();
+  mats[0].Ac.clear();
+  terms_cond.clear();
+  kron = KronSplit();
+  condensed_released = true;
 }
 
 template <int dim>

@@ -136,8 +136,16 @@ private:
   std::unique_ptr<IterativeSlabSolver> krylov[2]; // [transpose]
   dealii::Vector<double> guess[2];
   bool lu_valid = false, k_assembled = false;
+  /// release_condensed() freed Mc and Ac (prepare() assembles them again)
+  bool condensed_released = false;
   void assemble_matrix();
-  void factorize(); ///< assembles K first if the iterative path skipped it
+  /// Frees the condensed spatial matrices (constant coefficients: mats[0]).
+  void release_condensed();
+  /// Assembles K first if the iterative path skipped it. With `release` (a reused
+  /// factorization without iterative refinement), frees Mc and Ac once K is built and K
+  /// and its pattern once UMFPACK has copied it, before the numeric factorization: the
+  /// factorization's peak then holds only M, A, UMFPACK's copy and its work space.
+  void factorize(bool release = false);
   /// solver.type = auto: sets use_iterative (auto_picks_iterative) and `choice`.
   void choose_solver(bool factorization_reused);
   /// Krylov solve in place (rhs -> solution); returns the time spent on setup.

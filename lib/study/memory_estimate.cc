@@ -39,7 +39,10 @@ void add_operator(const SlabSystemSize &s, const MemoryModel &m, Phase &p)
 {
   const double t = m.r + 1, nnz_k = t * t * s.nnz_space, n_k = t * s.n_space;
   const double sets = m.time_dependent ? m.r + 3 : 1;
-  p.matrices += sets * 4 * 8 * s.nnz_space + 12 * nnz_k + 8 * n_k;
+  if (!s.iterative && m.lean_direct)
+    p.matrices += 2 * 8 * s.nnz_space;
+  else
+    p.matrices += sets * 4 * 8 * s.nnz_space + 12 * nnz_k + 8 * n_k;
   if (s.iterative)
     p.solver += 8. * m.krylov_vectors * n_k + precondition_bytes_per_nnz * nnz_k;
   else
@@ -132,6 +135,8 @@ MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
   m.r = r;
   m.n_slabs = n_slabs;
   m.time_dependent = primal.scene.coefficients_depend_on_time();
+  m.lean_direct =
+      !m.time_dependent && options.reuse_factorization && options.refinement_steps == 0;
   m.krylov_vectors = prm.solver.iterative.restart + 2;
   if (adjoint)
   {

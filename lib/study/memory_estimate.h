@@ -29,6 +29,10 @@ struct MemoryModel
   unsigned int n_slabs = 1; ///< N: slab solutions stored for all of them
   /// Coefficients depend on t: r+3 sets of spatial matrices per operator, else one.
   bool time_dependent = false;
+  /// UMFPACK with a reused factorization and no iterative refinement: the condensed
+  /// spatial matrices and K are freed before the numeric factorization (SlabOperator),
+  /// so the operator holds only M, A, UMFPACK's copy of K and the factors.
+  bool lean_direct = false;
   unsigned int krylov_vectors = 32; ///< iterative: restart + 2 vectors of the slab size
   unsigned int adjoints_stored = 1; ///< 2 with adaptivity.per_goal_estimates
   /// adaptivity.measure_time_error: the primal on 4 N slabs beside the N-slab solution.
