@@ -15,7 +15,7 @@
 // solver.ilu_fill (default 1). Env BENCH_ANISO = k refines every cell k more times in y
 // only (aspect ratio 2^k, column aspect_ratio). Env BENCH_NUMBERING = downstream
 // numbers the DoFs along b (solver.dof_numbering; column numbering).
-#include "config/errors.h"
+#include "base/errors.h"
 #include "goal/goal.h"
 #include "io/table.h"
 #include "scene/scene.h"

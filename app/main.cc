@@ -1,5 +1,5 @@
 // anisodwr command-line program: parse, run, report.
-#include "config/errors.h"
+#include "base/errors.h"
 #include "config/parameters.h"
 #include "io/table.h"
 #include "study/dwr.h"

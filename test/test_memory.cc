@@ -2,7 +2,7 @@
 // of the stored slab solutions, ordering properties of the model (more DoFs, slabs,
 // temporal degree or stored adjoints -> more memory; UMFPACK > Krylov for the same
 // system), and the stop message.
-#include "config/errors.h"
+#include "base/errors.h"
 #include "study/memory_estimate.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // The options table: struct defaults equal the table's, enums read and print by name,
 // and the errors name key, source and value.
-#include "config/errors.h"
+#include "base/errors.h"
 #include "config/parameters.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 #pragma once
 // The choice-valued options of the adaptivity section (adaptivity.mode, .marking,
 // .time_indicator, .space_indicator, .adjoint_stabilization), each with its name table
-// (config/choice.h); light, so that config/parameters.h can hold them.
-#include "config/choice.h"
+// (base/choice.h); light, so that config/parameters.h can hold them.
+#include "base/choice.h"
 
 namespace anisodwr
 {

@@ -1,6 +1,6 @@
 #include "config/parameters.h"
 
-#include "config/errors.h"
+#include "base/errors.h"
 #include "config/parameter_table.h"
 
 #include <boost/property_tree/json_parser.hpp>

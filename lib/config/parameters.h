@@ -5,10 +5,10 @@
 // Every key is declared once, in the entry table (parameter_table.cc), which binds its
 // name, default, pattern and documentation to its member; reading, `anisodwr defaults`,
 // to_json and the unknown-key errors all come from that table. Choice-valued keys are
-// enums with one name table each (config/choice.h). The member initializers below
+// enums with one name table each (base/choice.h). The member initializers below
 // equal the table's defaults (checked by test_parameters).
 #include "adaptivity/choices.h"
-#include "config/choice.h"
+#include "base/choice.h"
 #include "goal/goal_spec.h"
 #include "scene/scene_name.h"
 #include "slab/slab_solver_options.h"

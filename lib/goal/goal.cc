@@ -1,6 +1,6 @@
 #include "goal/goal.h"
 
-#include "config/errors.h"
+#include "base/errors.h"
 #include "time/slab_vector.h"
 
 #include <deal.II/base/quadrature_lib.h>

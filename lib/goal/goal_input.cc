@@ -1,6 +1,6 @@
 #include "goal/goal_input.h"
 
-#include "config/errors.h"
+#include "base/errors.h"
 #include "io/table.h"
 
 #include <cmath>

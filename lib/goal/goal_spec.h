@@ -1,6 +1,6 @@
 #pragma once
 // The description of one goal functional (doc/method.md §4), as read from the config.
-#include "config/choice.h"
+#include "base/choice.h"
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
 #include "io/table.h"
 
-#include "config/errors.h"
+#include "base/errors.h"
 
 #include <fcntl.h>
 #include <sys/file.h>

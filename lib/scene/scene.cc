@@ -1,6 +1,6 @@
 #include "scene/scene.h"
 
-#include "config/errors.h"
+#include "base/errors.h"
 #include "scene/scenes.h"
 
 namespace anisodwr

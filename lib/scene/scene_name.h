@@ -1,6 +1,6 @@
 #pragma once
 // scene.name: the benchmark scenes (doc/method.md §10), with their name table.
-#include "config/choice.h"
+#include "base/choice.h"
 
 namespace anisodwr
 {

@@ -1,6 +1,6 @@
 #include "scene/scenes.h"
 
-#include "config/errors.h"
+#include "base/errors.h"
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/manifold_lib.h>

@@ -1,6 +1,6 @@
 #include "slab/primal_march.h"
 
-#include "config/errors.h"
+#include "base/errors.h"
 
 #include <cmath>
 #include <iostream>

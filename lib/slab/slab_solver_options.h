@@ -1,6 +1,6 @@
 #pragma once
 // The slab solver choice (config section solver) without the solvers' types.
-#include "config/choice.h"
+#include "base/choice.h"
 #include "solver/iterative_options.h"
 
 #include <vector>

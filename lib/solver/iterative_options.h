@@ -1,8 +1,8 @@
 #pragma once
 // The options of the Krylov slab solvers (config section solver); no deal.II or
-// Trilinos types. Each choice is an enum with one name table (config/choice.h): the
+// Trilinos types. Each choice is an enum with one name table (base/choice.h): the
 // names are the config values, and adding a value here adds it to the key's choices.
-#include "config/choice.h"
+#include "base/choice.h"
 
 #include <string>
 #include <vector>

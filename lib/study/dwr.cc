@@ -6,7 +6,7 @@
 #include "adaptivity/estimator.h"
 #include "adaptivity/lifted_goal.h"
 #include "adaptivity/refinement.h"
-#include "config/errors.h"
+#include "base/errors.h"
 #include "goal/goal.h"
 #include "io/loop_report.h"
 #include "io/table.h"

@@ -1,6 +1,6 @@
 #include "study/study.h"
 
-#include "config/errors.h"
+#include "base/errors.h"
 #include "io/table.h"
 #include "io/vtu.h"
 #include "scene/scene.h"
