@@ -1,7 +1,7 @@
 #include "study/memory_estimate.h"
 #include "study/options.h"
 
-#include "config/errors.h"
+#include "base/errors.h"
 #include "io/table.h"
 
 #include <algorithm>
@@ -21,9 +21,6 @@ constexpr double bytes_per_dof = 200.;
 /// Resident memory the process gains on its first solves beyond what it had before
 /// (library code paged in, solver and quadrature initialization), MB.
 constexpr double startup_mb = 44.;
-/// UMFPACK numeric factors (and its work space) per nonzero of the slab matrix and per
-/// log2 of its size: the fill of a 2D problem grows like n log n.
-constexpr double lu_bytes_per_nnz_log = 5.;
 /// Iterative path: ILU factors and the Tpetra copy of the slab matrix, per nonzero.
 constexpr double precondition_bytes_per_nnz = 36.;
 
@@ -46,9 +43,10 @@ void add_operator(const SlabSystemSize &s, const MemoryModel &m, Phase &p)
   if (s.iterative)
     p.solver += 8. * m.krylov_vectors * n_k + precondition_bytes_per_nnz * nnz_k;
   else
-    // the copy UMFPACK factorizes (long indices, values) + the factors
-    p.solver += 16 * nnz_k + 8 * n_k +
-                lu_bytes_per_nnz_log * nnz_k * std::log2(std::max(n_k, 2.));
+    // the copy UMFPACK factorizes (long indices, values) + UMFPACK's peak (factors and
+    // work space) as solver.type = auto predicts it: from the run's last factorization
+    // of this degree and r, else from the fit to measured peaks
+    p.solver += 16 * nnz_k + 8 * n_k + predicted_lu_mb(n_k, s.degree, m.r + 1) * MB;
 }
 } // namespace
 
@@ -117,6 +115,7 @@ SlabSystemSize slab_system(const Space<2> &space, const SlabSolverOptions &optio
   SlabSystemSize s;
   s.n_space = space.n_dofs();
   s.nnz_space = space.sparsity().n_nonzero_elements();
+  s.degree = space.degree();
   s.iterative = solves_iteratively(options, s.n_space, r + 1, space.degree(),
                                    options.reuse_factorization &&
                                        !space.scene.coefficients_depend_on_time());

@@ -19,6 +19,7 @@ struct SlabSystemSize
   double n_space = 0;     ///< spatial DoFs (0: no such system)
   double nnz_space = 0;   ///< nonzeros of the spatial sparsity pattern
   bool iterative = false; ///< Krylov solver (else UMFPACK)
+  unsigned int degree = 1; ///< FE_Q degree (UMFPACK's predicted peak depends on it)
 };
 
 struct MemoryModel
