@@ -2,9 +2,16 @@
 // and the errors name key, source and value.
 #include "base/errors.h"
 #include "config/parameters.h"
+#include "scene/scene.h"
+#include "space/space.h"
+#include "study/options.h"
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 using namespace anisodwr;
@@ -95,4 +102,33 @@ TEST(Parameters, DefaultsListEveryChoice)
   EXPECT_NE(out.str().find("Allowed: Any one of average, adjoint_residual, higher_order"),
             std::string::npos);
   EXPECT_NE(out.str().find("\"time_indicator\": \"average\""), std::string::npos);
+}
+
+// adaptivity.adjoint_delta0 sets the adjoint's SUPG delta0 (negative: the primal's);
+// adjoint_stabilization = none overrides it with 0. The primal space keeps its own.
+TEST(Parameters, AdjointDelta0ReachesTheAdjointSpace)
+{
+  dealii::Triangulation<2> tria;
+  dealii::GridGenerator::hyper_cube(tria);
+  tria.refine_global(2);
+  const auto delta = [&](const std::vector<std::string> &overrides, bool adjoint)
+  {
+    std::vector<std::string> o = {"discretization.delta0=0.8",
+                                  "discretization.supg_tau_factor=0"};
+    o.insert(o.end(), overrides.begin(), overrides.end());
+    const Parameters p = Parameters::from_overrides(o);
+    const auto scene = create_scene<2>(p);
+    const auto space = adjoint ? make_adjoint_space(p, *scene, tria, 2)
+                               : make_space(p, *scene, tria, 1);
+    const auto cell = tria.begin_active();
+    return space->delta(cell, 1.) / std::sqrt(cell->measure());
+  };
+  EXPECT_NEAR(delta({}, false), 0.8, 1e-14);
+  EXPECT_NEAR(delta({}, true), 0.8, 1e-14);
+  EXPECT_NEAR(delta({"adaptivity.adjoint_delta0=0.1"}, true), 0.1, 1e-14);
+  EXPECT_NEAR(delta({"adaptivity.adjoint_delta0=0.1"}, false), 0.8, 1e-14);
+  EXPECT_EQ(delta({"adaptivity.adjoint_delta0=0.1", "adaptivity.adjoint_stabilization=none"},
+                  true),
+            0.);
+  EXPECT_NE(error_of({"adaptivity.adjoint_delta0=-2"}), "");
 }

@@ -352,6 +352,9 @@ std::vector<Entry> adaptivity_entries()
        "in degree q (doc/method.md §5); none: the adjoint is the Galerkin (delta = 0) discretization "
        "of the continuous adjoint, consistent with it; the estimator's S terms still use "
        "the primal's delta_K."},
+      {"adaptivity", "adjoint_delta0", "-1", m(&S::adjoint_delta0), real(-1.),
+       "delta0 of the transposed SUPG adjoint (adjoint_stabilization = transposed); negative "
+       "(default -1): discretization.delta0. The estimator's S terms always use the primal's delta_K."},
   };
 }
 

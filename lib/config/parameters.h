@@ -144,6 +144,7 @@ struct AdaptivitySection
   unsigned int adjoint_degree = 0;
   SpaceIndicator space_indicator = SpaceIndicator::average;
   AdjointStabilization adjoint_stabilization = AdjointStabilization::transposed;
+  double adjoint_delta0 = -1.; ///< < 0: discretization.delta0
 };
 
 struct OutputSection

@@ -242,9 +242,7 @@ void AdaptiveLoop::run()
 bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
 {
   const auto primal_space = make_space(prm, *scene, tria, prm.discretization.p);
-  const auto adjoint_space =
-      make_space(prm, *scene, tria, q,
-                 prm.adaptivity.adjoint_stabilization != AdjointStabilization::none);
+  const auto adjoint_space = make_adjoint_space(prm, *scene, tria, q);
   const Space<2> &primal = *primal_space, &adjoint = *adjoint_space;
   row.n_space = primal.n_dofs();
   row.n_t = mesh.n_slabs();

@@ -46,12 +46,14 @@ MarkingOptions marking_options(const Parameters &prm)
   return marking;
 }
 
+namespace
+{
 std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
                                      const dealii::Triangulation<2, 2> &tria,
-                                     unsigned int degree, bool stabilized)
+                                     unsigned int degree, double delta0)
 {
   const DiscretizationSection &d = prm.discretization;
-  auto space = std::make_unique<Space<2>>(scene, tria, degree, stabilized ? d.delta0 : 0.,
+  auto space = std::make_unique<Space<2>>(scene, tria, degree, delta0,
                                           d.supg_length == SupgLength::streamline,
                                           d.supg_tau_factor);
   const DofNumbering numbering = prm.solver.dof_numbering;
@@ -60,5 +62,24 @@ std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scen
       (numbering == DofNumbering::automatic && prm.solver.type != SolverType::direct));
   space->setup();
   return space;
+}
+} // namespace
+
+std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
+                                     const dealii::Triangulation<2, 2> &tria,
+                                     unsigned int degree)
+{
+  return make_space(prm, scene, tria, degree, prm.discretization.delta0);
+}
+
+std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<2> &scene,
+                                             const dealii::Triangulation<2, 2> &tria,
+                                             unsigned int degree)
+{
+  const AdaptivitySection &a = prm.adaptivity;
+  const double delta0 = a.adjoint_stabilization == AdjointStabilization::none ? 0.
+                        : a.adjoint_delta0 >= 0                              ? a.adjoint_delta0
+                                                : prm.discretization.delta0;
+  return make_space(prm, scene, tria, degree, delta0);
 }
 } // namespace anisodwr

@@ -33,8 +33,13 @@ SlabSolverOptions slab_solver_options(const Parameters &prm);
 MarkingOptions marking_options(const Parameters &prm);
 
 /// The FE_Q(degree) space of a run on `tria`, set up: SUPG from the discretization
-/// section (delta0 = 0 if not `stabilized`), DoFs numbered as solver.dof_numbering says.
+/// section, DoFs numbered as solver.dof_numbering says.
 std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
                                      const dealii::Triangulation<2, 2> &tria,
-                                     unsigned int degree, bool stabilized = true);
+                                     unsigned int degree);
+/// The adjoint's space: as make_space, with the delta0 of the adaptivity section
+/// (adjoint_stabilization, adjoint_delta0).
+std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<2> &scene,
+                                             const dealii::Triangulation<2, 2> &tria,
+                                             unsigned int degree);
 } // namespace anisodwr
