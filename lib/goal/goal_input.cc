@@ -1,7 +1,6 @@
 #include "goal/goal_input.h"
 
 #include "base/errors.h"
-#include "io/table.h"
 
 #include <cmath>
 #include <sstream>
@@ -13,6 +12,15 @@ using namespace dealii;
 
 namespace
 {
+/// v with 6 significant digits (g.radius is finite here)
+std::string six_digits(double v)
+{
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
 std::vector<std::string> split(const std::string &s, char sep)
 {
   std::vector<std::string> out;
@@ -102,10 +110,10 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
   const double diameter = box[0].distance(box[1]);
   for (const auto &g : goals)
     if (g.kind == GoalKind::point && !(g.radius <= diameter))
-      throw InputError(in.radius_source + ": invalid value '" + json_number(g.radius, 6) +
+      throw InputError(in.radius_source + ": invalid value '" + six_digits(g.radius) +
                        "' for key 'goal.radius'; expected a number >= 0 and at most the "
                        "diameter " +
-                       json_number(diameter, 6) + " of the domain " +
+                       six_digits(diameter) + " of the domain " +
                        scene.domain_text() + " of scene '" + scene.name() + "'");
   if (in.weights != "auto")
   {

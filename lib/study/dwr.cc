@@ -285,12 +285,16 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
         primal, mesh, basis, slab_solver_options(prm), goals, row.J, opt);
 
   t.restart();
-  SlabOperator<2> opq(adjoint, basis, slab_solver_options(prm));
-  const auto Z = march_adjoint(adjoint, mesh, basis, opq,
+  auto opq = std::make_unique<SlabOperator<2>>(adjoint, basis, slab_solver_options(prm));
+  const auto Z = march_adjoint(adjoint, mesh, basis, *opq,
                                assemble_goal_vectors(adjoint, goals), opt);
   row.t_adjoint = t.wall_time();
-  report_auto_choice(row.loop, 1, opq);
-  row.lu_adjoint_mb = opq.timings().factor_mb;
+  report_auto_choice(row.loop, 1, *opq);
+  row.lu_adjoint_mb = opq->timings().factor_mb;
+  // The estimator solves no slab system: the adjoint's factors and matrices go before
+  // it runs, unless the per-goal adjoints still need them.
+  if (!prm.adaptivity.per_goal_estimates)
+    opq.reset();
 
   t.restart();
   ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, prm.adaptivity.time_indicator,
@@ -303,7 +307,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
     for (const auto &goal : goals)
     {
       const GoalSpec g = unweighted(goal);
-      const auto Zg = march_adjoint(adjoint, mesh, basis, opq,
+      const auto Zg = march_adjoint(adjoint, mesh, basis, *opq,
                                     assemble_goal_vectors(adjoint, {g}), opt);
       const auto ig =
           estimate(primal, adjoint, mesh, basis, U, Zg, {g},
