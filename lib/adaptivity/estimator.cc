@@ -374,6 +374,63 @@ double IndicatorAssembly<dim>::higher_order_errors(unsigned int n, double tau, b
 }
 } // namespace
 
+namespace
+{
+/// Runs assembly.add_cell over all cells on MultithreadInfo::n_threads() threads and
+/// returns the per-chunk sums in chunk order (the cell's own indicators go to `ind`).
+template <int dim, class MakeAssembly>
+std::vector<Indicators<dim>> add_cells_in_chunks(const DoFHandler<dim> &dofs,
+                                                 unsigned int n_slabs,
+                                                 const MakeAssembly &make_assembly,
+                                                 Indicators<dim> &ind)
+{
+  // The cells are cut into chunks that depend only on their number; each chunk sums
+  // its own contributions and the chunks are added in order, so the totals depend on
+  // the number of threads only through round-off in the cell terms (deal.II's FEValues
+  // reuses data between similar consecutive cells). Each thread has its own assembly
+  // (buffers, FEValues); a cell's own indicators are written by the one thread that
+  // owns it. Threads: MultithreadInfo::n_threads() (all cores; DEAL_II_NUM_THREADS).
+  std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+  for (const auto &cell : dofs.active_cell_iterators())
+    cells.push_back(cell);
+  const std::size_t chunk = std::max<std::size_t>(64, (cells.size() + 255) / 256),
+                    n_chunks = (cells.size() + chunk - 1) / chunk;
+  std::vector<Indicators<dim>> sums(n_chunks);
+  for (auto &s : sums)
+    s.eta_tau_slab.assign(n_slabs, 0.);
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto work = [&]()
+  {
+    try
+    {
+      auto assembly = make_assembly();
+      for (std::size_t k = next++; k < n_chunks; k = next++)
+        for (std::size_t c = k * chunk; c < std::min(cells.size(), (k + 1) * chunk); ++c)
+          assembly.add_cell(cells[c], ind, sums[k]);
+    }
+    catch (...)
+    {
+      const std::lock_guard<std::mutex> lock(failure_mutex);
+      failure = std::current_exception();
+      next = n_chunks; // the other threads stop after their chunk
+    }
+  };
+  const unsigned int n_threads =
+      std::min<std::size_t>(MultithreadInfo::n_threads(), n_chunks);
+  std::vector<std::thread> threads;
+  for (unsigned int t = 1; t < n_threads; ++t)
+    threads.emplace_back(work);
+  work();
+  for (auto &t : threads)
+    t.join();
+  if (failure)
+    std::rethrow_exception(failure);
+  return sums;
+}
+} // namespace
+
 template <int dim>
 Indicators<dim>
 estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
@@ -403,51 +460,14 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
   ind.eta_tau_cell.assign(tria.n_active_cells(), 0.);
   ind.eta_tau_slab.assign(mesh.n_slabs(), 0.);
 
-  // The cells are cut into chunks that depend only on their number; each chunk sums
-  // its own contributions and the chunks are added in order, so the totals depend on
-  // the number of threads only through round-off in the cell terms (deal.II's FEValues
-  // reuses data between similar consecutive cells). Each thread has its own assembly
-  // (buffers, FEValues); a cell's own indicators are written by the one thread that
-  // owns it. Threads: MultithreadInfo::n_threads() (all cores; DEAL_II_NUM_THREADS).
-  std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
-  for (const auto &cell : primal.dof_handler().active_cell_iterators())
-    cells.push_back(cell);
-  const std::size_t chunk = std::max<std::size_t>(64, (cells.size() + 255) / 256),
-                    n_chunks = (cells.size() + chunk - 1) / chunk;
-  std::vector<Indicators<dim>> sums(n_chunks);
-  for (auto &s : sums)
-    s.eta_tau_slab.assign(mesh.n_slabs(), 0.);
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  const auto work = [&]()
-  {
-    try
-    {
-      IndicatorAssembly<dim> assembly(primal, adjoint, mesh, basis, U, Z, goals,
+  const auto sums = add_cells_in_chunks(
+      primal.dof_handler(), mesh.n_slabs(),
+      [&]()
+      {
+        return IndicatorAssembly<dim>(primal, adjoint, mesh, basis, U, Z, goals,
                                       time_indicator, hi, space_indicator, zT, u0);
-      for (std::size_t k = next++; k < n_chunks; k = next++)
-        for (std::size_t c = k * chunk; c < std::min(cells.size(), (k + 1) * chunk); ++c)
-          assembly.add_cell(cells[c], ind, sums[k]);
-    }
-    catch (...)
-    {
-      const std::lock_guard<std::mutex> lock(failure_mutex);
-      failure = std::current_exception();
-      next = n_chunks; // the other threads stop after their chunk
-    }
-  };
-  const unsigned int n_threads =
-      std::min<std::size_t>(MultithreadInfo::n_threads(), n_chunks);
-  std::vector<std::thread> threads;
-  for (unsigned int t = 1; t < n_threads; ++t)
-    threads.emplace_back(work);
-  work();
-  for (auto &t : threads)
-    t.join();
-  if (failure)
-    std::rethrow_exception(failure);
-
+      },
+      ind);
   for (const auto &s : sums)
   {
     for (unsigned int i = 0; i < dim; ++i)

@@ -163,17 +163,9 @@ void SlabOperator<dim>::choose_solver(bool factorization_reused)
 }
 
 template <int dim>
-void SlabOperator<dim>::prepare(double t_start, double tau_n)
+void SlabOperator<dim>::assemble_terms(double t_start, double tau_n, bool constant,
+                                       bool same_tau)
 {
-  const bool constant = !space.scene.coefficients_depend_on_time();
-  // Equal slab lengths computed as differences of t_n differ in the last bits.
-  const bool same_tau = std::abs(tau_n - tau) <= 1e-12 * tau_n;
-  if (constant && reuse && factorized && same_tau)
-  {
-    t0 = t_start;
-    return;
-  }
-  Timer timer;
   const unsigned int m = basis.n_dofs();
   terms_full.clear();
   terms_cond.clear();
@@ -225,6 +217,21 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     const auto &mid = mats[sq.size() / 2];
     kron = {basis.derivative_with_jump(), tM, &mid.Mc, &mid.Ac};
   }
+}
+
+template <int dim>
+void SlabOperator<dim>::prepare(double t_start, double tau_n)
+{
+  const bool constant = !space.scene.coefficients_depend_on_time();
+  // Equal slab lengths computed as differences of t_n differ in the last bits.
+  const bool same_tau = std::abs(tau_n - tau) <= 1e-12 * tau_n;
+  if (constant && reuse && factorized && same_tau)
+  {
+    t0 = t_start;
+    return;
+  }
+  Timer timer;
+  assemble_terms(t_start, tau_n, constant, same_tau);
   time.assemble_spatial += timer.wall_time();
   krylov[0].reset();
   krylov[1].reset();

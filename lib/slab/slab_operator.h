@@ -139,6 +139,9 @@ private:
   /// release_condensed() freed Mc and Ac (prepare() assembles them again)
   bool condensed_released = false;
   void assemble_matrix();
+  /// The Kronecker terms of K_n (full and condensed), the jump mass and the split for
+  /// the Kronecker preconditioners; assembles the spatial matrices they need.
+  void assemble_terms(double t_start, double tau_n, bool constant, bool same_tau);
   /// Frees the condensed spatial matrices (constant coefficients: mats[0]).
   void release_condensed();
   /// Assembles K first if the iterative path skipped it. With `release` (a reused

@@ -83,6 +83,20 @@ std::pair<double, double> measure_time_error(const Space<2> &primal, const TimeM
   return {d1 + d2 / (std::pow(2., k) - 1.), k};
 }
 
+/// The loop table's copy of the estimator's sums.
+void copy_indicators(const Indicators<2> &ind, LoopRow &row)
+{
+  row.eta_h = ind.eta_h;
+  row.eta_h_total = ind.eta_h_total();
+  row.eta_tau = ind.eta_tau;
+  row.eta_tau_rho = ind.eta_tau_rho;
+  row.eta_tau_rhostar = ind.eta_tau_rhostar;
+  row.eta_h_rho = ind.eta_h_rho;
+  row.eta_h_rhostar = ind.eta_h_rhostar;
+  row.eta_h_supg = ind.eta_h_supg;
+  row.no_lift = ind.no_lift;
+}
+
 /// The adaptive loop of run_dwr: the scene, goals and meshes, the tables, and per loop
 /// the solves, the estimate, the outputs and the refinement.
 class AdaptiveLoop
@@ -103,6 +117,10 @@ private:
   /// Probes and cut lines of u(T), and the VTU of the loop.
   void write_loop_outputs(LoopRow &row, const Space<2> &primal, const Vector<double> &uT,
                           const Indicators<2> &ind, const std::vector<double> &ar_cell);
+  /// eta of each goal alone (adaptivity.per_goal_estimates): its own adjoint and estimate.
+  void estimate_per_goal(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint,
+                         SlabOperator<2> &opq, const std::vector<Vector<double>> &U,
+                         const HigherOrderPrimal *hi, const MarchOptions &opt);
   /// True if the run ends after this loop (stop_reason says why).
   bool stop_after(const LoopRow &row);
   /// Tables, summary and console line of a finished loop.
@@ -304,25 +322,8 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
     if (!std::isfinite(e))
       throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
   if (prm.adaptivity.per_goal_estimates)
-    for (const auto &goal : goals)
-    {
-      const GoalSpec g = unweighted(goal);
-      const auto Zg = march_adjoint(adjoint, mesh, basis, *opq,
-                                    assemble_goal_vectors(adjoint, {g}), opt);
-      const auto ig =
-          estimate(primal, adjoint, mesh, basis, U, Zg, {g},
-                   prm.adaptivity.time_indicator, hi_ptr, prm.adaptivity.space_indicator);
-      row.eta_goal.push_back(ig.eta_h_total() + ig.eta_tau);
-    }
-  row.eta_h = ind.eta_h;
-  row.eta_h_total = ind.eta_h_total();
-  row.eta_tau = ind.eta_tau;
-  row.eta_tau_rho = ind.eta_tau_rho;
-  row.eta_tau_rhostar = ind.eta_tau_rhostar;
-  row.eta_h_rho = ind.eta_h_rho;
-  row.eta_h_rhostar = ind.eta_h_rhostar;
-  row.eta_h_supg = ind.eta_h_supg;
-  row.no_lift = ind.no_lift;
+    estimate_per_goal(row, primal, adjoint, *opq, U, hi_ptr, opt);
+  copy_indicators(ind, row);
   std::vector<double> ar_cell;
   row.ar = max_aspect_ratio(tria, primal.mapping(), &ar_cell);
 
@@ -330,6 +331,22 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   combine_blocks(U.back(), basis.right_trace(), uT);
   write_loop_outputs(row, primal, uT, ind, ar_cell);
   return true;
+}
+
+void AdaptiveLoop::estimate_per_goal(LoopRow &row, const Space<2> &primal,
+                                     const Space<2> &adjoint, SlabOperator<2> &opq,
+                                     const std::vector<Vector<double>> &U,
+                                     const HigherOrderPrimal *hi, const MarchOptions &opt)
+{
+  for (const auto &goal : goals)
+  {
+    const GoalSpec g = unweighted(goal);
+    const auto Zg =
+        march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, {g}), opt);
+    const auto ig = estimate(primal, adjoint, mesh, basis, U, Zg, {g},
+                             prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator);
+    row.eta_goal.push_back(ig.eta_h_total() + ig.eta_tau);
+  }
 }
 
 void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
