@@ -86,6 +86,13 @@ bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m
   return !factorization_reused && n * m >= opt.auto_threshold;
 }
 
+bool releases_assembly_matrices(const SlabSolverOptions &options,
+                                bool coefficients_constant)
+{
+  return coefficients_constant && options.reuse_factorization &&
+         options.refinement_steps == 0;
+}
+
 bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
                         unsigned int degree, bool factorization_reused)
 {
@@ -172,11 +179,10 @@ void SlabOperator<dim>::assemble_terms(double t_start, double tau_n, bool consta
   if (constant)
   {
     // delta_K <= c tau_n: a new slab length needs new spatial matrices
-    if (mats.empty() || condensed_released || (space.delta_depends_on_tau() && !same_tau))
+    if (mats.empty() || mats[0].Mc.empty() || (space.delta_depends_on_tau() && !same_tau))
     {
       mats.resize(1);
       space.assemble_matrices(0., tau_n, mats[0]);
-      condensed_released = false;
     }
     FullMatrix<double> tM(basis.mass());
     tM *= tau_n;
@@ -251,7 +257,7 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     // UMFPACK without iterative refinement reads neither K nor its copy of K in the
     // solves, and a reused factorization needs no condensed matrices until the slab
     // length changes: the march keeps only M (the jump) and A (the Dirichlet lift).
-    factorize(constant && reuse && opt.refinement_steps == 0);
+    factorize(releases_assembly_matrices(opt, constant));
   factorized = true;
   t0 = t_start;
   tau = tau_n;
@@ -264,7 +270,6 @@ void SlabOperator<dim>::release_condensed()
   mats[0].Ac.clear();
   terms_cond.clear();
   kron = KronSplit();
-  condensed_released = true;
 }
 
 template <int dim>

@@ -70,6 +70,12 @@ double auto_memory_budget_mb(const SlabSolverOptions &opt);
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused);
 
+/// True if the slab operator frees M_c, A_c and K before the numeric factorization: one
+/// UMFPACK factorization serves every slab (coefficients constant in t,
+/// reuse_factorization) and its solves read no matrix (refinement_steps = 0).
+bool releases_assembly_matrices(const SlabSolverOptions &options,
+                                bool coefficients_constant);
+
 /// True if `options` solve the slab system of a space of FE_Q(degree) with n_space DoFs
 /// and a dG basis of m functions iteratively (type iterative, or auto_picks_iterative
 /// for n_space m unknowns).
@@ -136,13 +142,12 @@ private:
   std::unique_ptr<IterativeSlabSolver> krylov[2]; // [transpose]
   dealii::Vector<double> guess[2];
   bool lu_valid = false, k_assembled = false;
-  /// release_condensed() freed Mc and Ac (prepare() assembles them again)
-  bool condensed_released = false;
   void assemble_matrix();
   /// The Kronecker terms of K_n (full and condensed), the jump mass and the split for
   /// the Kronecker preconditioners; assembles the spatial matrices they need.
   void assemble_terms(double t_start, double tau_n, bool constant, bool same_tau);
-  /// Frees the condensed spatial matrices (constant coefficients: mats[0]).
+  /// Frees the condensed spatial matrices (constant coefficients: mats[0]); the next
+  /// assemble_terms assembles them again.
   void release_condensed();
   /// Assembles K first if the iterative path skipped it. With `release` (a reused
   /// factorization without iterative refinement), frees Mc and Ac once K is built and K

@@ -134,8 +134,7 @@ MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
   m.r = r;
   m.n_slabs = n_slabs;
   m.time_dependent = primal.scene.coefficients_depend_on_time();
-  m.lean_direct =
-      !m.time_dependent && options.reuse_factorization && options.refinement_steps == 0;
+  m.lean_direct = releases_assembly_matrices(options, !m.time_dependent);
   m.krylov_vectors = prm.solver.iterative.restart + 2;
   if (adjoint)
   {
