@@ -14,7 +14,9 @@
 // copy of K), solve = per slab, peak = VmHWM of the process. Env BENCH_ILU_FILL sets
 // solver.ilu_fill (default 1). Env BENCH_ANISO = k refines every cell k more times in y
 // only (aspect ratio 2^k, column aspect_ratio). Env BENCH_NUMBERING = downstream
-// numbers the DoFs along b (solver.dof_numbering; column numbering).
+// numbers the DoFs along b (solver.dof_numbering; column numbering). Env BENCH_INNER = k
+// sets solver.inner_iterations (BENCH_INNER_TOL solver.inner_tolerance); column
+// inner_mean = inner GMRES iterations per slab solve.
 #include "base/errors.h"
 #include "goal/goal.h"
 #include "io/table.h"
@@ -42,7 +44,7 @@ namespace
 const char *header =
     "system,p,r,eps,refinements,N_space,N_slab,solver,preconditioner,status,"
     "setup_s,solve_s_per_slab,iters_mean,iters_max,peak_mb,base_mb,load1,"
-    "message,aspect_ratio,numbering";
+    "message,aspect_ratio,numbering,inner_iterations,inner_mean";
 
 double current_rss_mb()
 {
@@ -110,6 +112,10 @@ int main(int argc, char **argv)
     o.iterative.max_iterations = 500;
     if (const char *fill = std::getenv("BENCH_ILU_FILL"))
       o.iterative.ilu_fill = std::stod(fill);
+    if (const char *inner = std::getenv("BENCH_INNER"))
+      o.iterative.inner_iterations = std::stoi(inner);
+    if (const char *tol = std::getenv("BENCH_INNER_TOL"))
+      o.iterative.inner_tolerance = std::stod(tol);
   }
   // AMG needs MPI (the library initializes it on first use); initialized here, outside
   // the timed setup, since it is a once-per-process cost (about 1 s for a singleton).
@@ -181,6 +187,8 @@ int main(int argc, char **argv)
             << (t.n_krylov_solves ? double(t.krylov_iterations) / t.n_krylov_solves : 0.)
             << "," << t.max_krylov_iterations << "," << peak_memory_mb() << "," << base
             << "," << load1() << ",\"" << message << "\"," << (1u << aniso) << ","
-            << numbering << std::endl;
+            << numbering << "," << o.iterative.inner_iterations << ","
+            << (t.n_krylov_solves ? double(t.inner_iterations) / t.n_krylov_solves : 0.)
+            << std::endl;
   return 0;
 }

@@ -215,6 +215,17 @@ std::vector<Entry> solver_entries()
       {"solver", "amg_smoother", "ilu", k(&I::amg_smoother), by_name,
        "Smoother of solver.spatial_preconditioner = amg (one sweep per level): ilu "
        "(ILU(0)), gauss_seidel or chebyshev."},
+      {"solver", "inner_iterations", "0", k(&I::inner_iterations), integer(0, 1000),
+       "kronecker and kronecker_presb: 0 = each temporal mode block is approximated by "
+       "one application of its spatial preconditioner; k > 0 = solved by at most k "
+       "GMRES iterations right-preconditioned by it (complex pairs: on the 2n x 2n "
+       "block, with PRESB as the preconditioner for kronecker_presb) to the relative "
+       "residual solver.inner_tolerance. The outer solve then runs as flexible GMRES "
+       "(solver.krylov gmres or fgmres; bicgstab is rejected). Makes the outer "
+       "iteration count nearly independent of epsilon, r and the aspect ratio "
+       "(doc/results.md)."},
+      {"solver", "inner_tolerance", "1e-2", k(&I::inner_tolerance), real(0.),
+       "Relative residual at which an inner GMRES (solver.inner_iterations > 0) stops."},
       {"solver", "stagnation_window", "50", k(&I::stagnation_window), integer(0, 1000000),
        "Stagnation detection: a Krylov solve whose residual has not fallen by "
        "solver.stagnation_factor over the last stagnation_window iterations stops and "

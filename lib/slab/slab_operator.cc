@@ -30,7 +30,8 @@ std::string solver_totals_json()
   return "\"solver_fallbacks\": " + std::to_string(totals.fallbacks) +
          ", \"krylov\": {\"solves\": " + std::to_string(totals.krylov_solves) +
          ", \"iterations\": " + std::to_string(totals.krylov_iterations) +
-         ", \"max_iterations\": " + std::to_string(totals.max_krylov_iterations) + "}";
+         ", \"max_iterations\": " + std::to_string(totals.max_krylov_iterations) +
+         ", \"inner_iterations\": " + std::to_string(totals.inner_iterations) + "}";
 }
 
 namespace
@@ -349,6 +350,8 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
     ++time.n_krylov_solves;
     time.krylov_iterations += stats.iterations;
     time.max_krylov_iterations = std::max(time.max_krylov_iterations, stats.iterations);
+    time.inner_iterations += stats.inner_iterations;
+    totals.inner_iterations += stats.inner_iterations;
     ++totals.krylov_solves;
     totals.krylov_iterations += stats.iterations;
     totals.max_krylov_iterations =

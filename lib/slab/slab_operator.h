@@ -31,13 +31,15 @@ struct SlabTimings
   double factor_mb = 0;
   unsigned int n_preconditioners = 0, n_krylov_solves = 0, krylov_iterations = 0,
                max_krylov_iterations = 0, n_fallbacks = 0;
+  /// GMRES iterations inside the kronecker* preconditioners (solver.inner_iterations)
+  unsigned long inner_iterations = 0;
 };
 
 /// Process-wide totals over all SlabOperators (for summary.json).
 struct SolverTotals
 {
   unsigned long krylov_solves = 0, krylov_iterations = 0, max_krylov_iterations = 0,
-                fallbacks = 0;
+                fallbacks = 0, inner_iterations = 0;
 };
 const SolverTotals &solver_totals();
 /// `"solver_fallbacks": n, "krylov": {...}` (JSON members, no braces).

@@ -101,6 +101,14 @@ struct IterativeOptions
   /// last stagnation_window iterations stops and counts as failed (window 0 or
   /// factor <= 1: off). gmres/fgmres watch the implicit residual every iteration;
   /// bicgstab runs in chunks of `window` iterations and compares true residuals.
+  /// Inner iterations of the kronecker* preconditioners: 0 = each temporal mode block
+  /// is approximated by one application of its spatial preconditioner (ILU or AMG);
+  /// k > 0 = solved by at most k right-preconditioned GMRES iterations to the relative
+  /// residual inner_tolerance (complex pairs: GMRES on the 2n x 2n block with PRESB or
+  /// the 2n ILU as its preconditioner). The preconditioner then varies between
+  /// applications, so gmres runs flexible (as fgmres); bicgstab is rejected.
+  unsigned int inner_iterations = 0;
+  double inner_tolerance = 1e-2;
   unsigned int stagnation_window = 50;
   double stagnation_factor = 10.;
 };

@@ -2,6 +2,7 @@
 // preconditioner choice; see iterative_solver.h.
 #include "solver/iterative_solver.h"
 
+#include "base/errors.h"
 #include "solver/ifpack2_factory.h"
 #include "solver/kronecker_operator.h"
 #include "solver/kronecker_preconditioner.h"
@@ -95,12 +96,19 @@ struct IterativeSlabSolver::Impl
   RCP<Matrix> K; // assembled K (null if matrix-free)
   RCP<OP> op;    // K or the Kronecker operator
   RCP<OP> prec;
+  RCP<KroneckerPreconditioner> kronecker; // prec, if a kronecker* one
   RCP<RowMatrix> block_matrix; // block_ilu: K as BlockCrsMatrix
 };
 
 IterativeSlabSolver::IterativeSlabSolver(const IterativeOptions &options) : impl(new Impl)
 {
   impl->o = options;
+  if (options.inner_iterations > 0 && options.krylov == Krylov::bicgstab)
+    throw InputError("solver.inner_iterations = " +
+                     std::to_string(options.inner_iterations) +
+                     " makes the preconditioner change between applications; it needs "
+                     "solver.krylov = gmres or fgmres (run as flexible GMRES), not "
+                     "bicgstab");
   ensure_kokkos();
 }
 
@@ -112,6 +120,8 @@ std::string IterativeSlabSolver::name() const
   std::string n = anisodwr::name(o.krylov) + "+" + anisodwr::name(o.preconditioner);
   if (o.spatial_preconditioner == SpatialPreconditioner::amg && is_kronecker(o.preconditioner))
     n += "(amg-" + anisodwr::name(o.amg_smoother) + ")";
+  if (o.inner_iterations > 0 && is_kronecker(o.preconditioner))
+    n += "[inner gmres " + std::to_string(o.inner_iterations) + "]";
   return n;
 }
 
@@ -124,6 +134,7 @@ void IterativeSlabSolver::setup(const SlabMatrix &K, bool transpose)
 {
   auto &d = *impl;
   d.prec = Teuchos::null;
+  d.kronecker = Teuchos::null;
   d.block_matrix = Teuchos::null;
   d.K = Teuchos::null;
   d.op = Teuchos::null;
@@ -148,7 +159,8 @@ void IterativeSlabSolver::setup(const SlabMatrix &K, bool transpose)
   {
     if (!K.split)
       throw std::logic_error("kronecker preconditioner needs the Kronecker split of K");
-    d.prec = rcp(new KroneckerPreconditioner(d.map, *K.split, transpose, d.o));
+    d.kronecker = rcp(new KroneckerPreconditioner(d.map, *K.split, transpose, d.o));
+    d.prec = d.kronecker;
   }
   else if (p == Preconditioner::block_ilu)
   {
@@ -204,7 +216,7 @@ struct BelosRun
       pl->set("Num Blocks", static_cast<int>(o.restart));
       pl->set("Maximum Restarts", static_cast<int>(o.max_iterations / o.restart + 1));
       pl->set("Explicit Residual Scaling", "Norm of RHS");
-      if (o.krylov == Krylov::fgmres)
+      if (o.krylov == Krylov::fgmres || o.inner_iterations > 0)
         pl->set("Flexible Gmres", true);
       solver = rcp(new Belos::BlockGmresSolMgr<double, MV, OP>(problem, pl));
       if (watch)
@@ -312,6 +324,7 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
     return stats;
   }
   BelosRun run(d.o, d.op, d.prec, d.map, bnorm);
+  const unsigned long inner_before = d.kronecker.is_null() ? 0 : d.kronecker->inner_iterations();
   {
     auto bd = run.B->getDataNonConst(0);
     auto xd = run.X->getDataNonConst(0);
@@ -327,6 +340,8 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
     run.solve_once(stats);
   // True residual of the returned iterate.
   stats.residual = run.true_residual();
+  if (!d.kronecker.is_null())
+    stats.inner_iterations = d.kronecker->inner_iterations() - inner_before;
   {
     auto xd = run.X->getData(0);
     for (std::size_t i = 0; i < x.size(); ++i)

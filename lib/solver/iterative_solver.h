@@ -36,6 +36,9 @@ struct KrylovStats
 {
   unsigned int iterations = 0;
   double residual = 0; ///< achieved ||b - K x|| / ||b||
+  /// GMRES iterations inside the preconditioner (solver.inner_iterations > 0), summed
+  /// over its applications in this solve.
+  unsigned long inner_iterations = 0;
 };
 
 /// The slab matrix: assembled (`assembled`), or matrix-free as the Kronecker sum `terms`

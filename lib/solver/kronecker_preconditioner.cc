@@ -2,6 +2,7 @@
 
 #include "solver/amg_block.h"
 #include "solver/ifpack2_factory.h"
+#include "solver/inner_gmres.h"
 #include "time/slab_vector.h"
 
 #include <algorithm>
@@ -20,7 +21,8 @@ namespace anisodwr::tpetra
 KroneckerPreconditioner::KroneckerPreconditioner(const RCP<const Map> &slab_map,
                                                  const KronSplit &k, bool transpose,
                                                  const IterativeOptions &o)
-    : presb(o.preconditioner == Preconditioner::kronecker_presb), slab_map(slab_map)
+    : presb(o.preconditioner == Preconditioner::kronecker_presb),
+      inner_its(o.inner_iterations), inner_tol(o.inner_tolerance), slab_map(slab_map)
 {
   schur_form(k, transpose);
 
@@ -28,6 +30,9 @@ KroneckerPreconditioner::KroneckerPreconditioner(const RCP<const Map> &slab_map,
   const auto &S2 = *k.S2;
   space_map = serial_map(S1.m());
   S1_t = to_tpetra(space_map, S1, 1., nullptr, 0., transpose);
+  w1 = rcp(new Vec(space_map));
+  w2 = rcp(new Vec(space_map));
+  h = rcp(new Vec(space_map));
   for (unsigned int j = 0; j < m;)
   {
     blocks.push_back(make_block(j, S1, S2, transpose, o));
@@ -38,9 +43,6 @@ KroneckerPreconditioner::KroneckerPreconditioner(const RCP<const Map> &slab_map,
     y.push_back(rcp(new Vec(space_map)));
     z.push_back(rcp(new Vec(space_map)));
   }
-  w1 = rcp(new Vec(space_map));
-  w2 = rcp(new Vec(space_map));
-  h = rcp(new Vec(space_map));
 }
 
 void KroneckerPreconditioner::schur_form(const KronSplit &k, bool transpose)
@@ -116,26 +118,97 @@ KroneckerPreconditioner::make_block(unsigned int j,
   }
   else
     blk.matrix = to_tpetra(space_map, S1, blk.shift, &S2, 1., transpose);
+  make_spatial(blk, o);
+  if (blk.size == 2 && presb)
+    blk.presb = presb_of(blk);
+  if (inner_its > 0)
+    make_inner_operators(blk);
+  else if (o.spatial_preconditioner == SpatialPreconditioner::amg)
+    blk.matrix = Teuchos::null; // ML works on its Epetra copy
+  return blk;
+}
+
+void KroneckerPreconditioner::make_spatial(Block &blk, const IterativeOptions &o)
+{
   if (o.spatial_preconditioner == SpatialPreconditioner::amg)
   {
-    blk.amg = std::make_shared<AmgBlock>(*blk.matrix, blk.map.is_null() ? 1 : 2, o);
-    blk.matrix = Teuchos::null; // ML works on its Epetra copy
+    auto amg = std::make_shared<AmgBlock>(*blk.matrix, blk.map.is_null() ? 1 : 2, o);
+    blk.spatial = [amg](const Vec &in, Vec &out) { amg->apply(in, out); };
   }
   else
   {
     IterativeOptions io = o;
     io.ilu_fill = std::max(0., std::round(o.ilu_fill));
-    blk.prec = make_ifpack2(Preconditioner::riluk, blk.matrix, io, 1);
+    RCP<Prec> prec = make_ifpack2(Preconditioner::riluk, blk.matrix, io, 1);
+    blk.spatial = [prec](const Vec &in, Vec &out) { prec->apply(in, out); };
   }
-  return blk;
 }
 
-void KroneckerPreconditioner::inner(const Block &b, const Vec &in, Vec &out)
+void KroneckerPreconditioner::make_inner_operators(Block &blk) const
 {
-  if (b.amg)
-    b.amg->apply(in, out);
-  else
-    b.prec->apply(in, out);
+  if (blk.size == 1 || !presb)
+  {
+    blk.op = blk.matrix;
+    blk.op_prec = rcp(new FunctionOperator(blk.map.is_null() ? space_map : blk.map,
+                                           blk.spatial));
+    return;
+  }
+  // The scaled block [[B, -beta S1], [beta S1, B]] on [y1; zz], B = M - beta S1 with
+  // M = blk.matrix = B + beta S1, and PRESB as its preconditioner.
+  const std::size_t n = space_map->getNodeNumElements();
+  blk.map = serial_map(2 * n);
+  blk.in = rcp(new Vec(blk.map));
+  blk.out = rcp(new Vec(blk.map));
+  const auto sm = space_map;
+  const RCP<Matrix> M = blk.matrix, S1 = S1_t;
+  const double beta = blk.beta;
+  const RCP<Vec> s = rcp(new Vec(sm)), t = rcp(new Vec(sm));
+  blk.op = rcp(new FunctionOperator(
+      blk.map,
+      [=](const Vec &x, Vec &y)
+      {
+        const auto x1 = x.offsetView(sm, 0), x2 = x.offsetView(sm, n);
+        auto y1 = y.offsetViewNonConst(sm, 0), y2 = y.offsetViewNonConst(sm, n);
+        M->apply(*x1, *y1);
+        M->apply(*x2, *y2);
+        s->update(1., *x1, 1., *x2, 0.);
+        S1->apply(*s, *t);
+        y1->update(-beta, *t, 1.); // M x1 - beta S1 (x1 + x2)
+        s->update(1., *x1, -1., *x2, 0.);
+        S1->apply(*s, *t);
+        y2->update(beta, *t, 1.); // M x2 + beta S1 (x1 - x2)
+      }));
+  const Presb pr = blk.presb;
+  blk.op_prec = rcp(new FunctionOperator(
+      blk.map,
+      [=](const Vec &f, Vec &y)
+      {
+        pr(*f.offsetView(sm, 0), *f.offsetView(sm, n), *y.offsetViewNonConst(sm, 0),
+           *y.offsetViewNonConst(sm, n));
+      }));
+}
+
+KroneckerPreconditioner::Presb KroneckerPreconditioner::presb_of(const Block &b) const
+{
+  Presb p;
+  p.spatial = b.spatial;
+  p.S1 = S1_t;
+  p.beta = b.beta;
+  p.w1 = w1;
+  p.w2 = w2;
+  p.h = h;
+  return p;
+}
+
+void KroneckerPreconditioner::Presb::operator()(const Vec &f1, const Vec &f2, Vec &y1,
+                                                Vec &zz) const
+{
+  w1->update(1., f1, 1., f2, 0.); // f1 + f2
+  spatial(*w1, *h);               // h = y1 + zz
+  S1->apply(*h, *w2);
+  w2->update(1., f1, beta); // beta S1 h + f1
+  spatial(*w2, y1);         // y1 = (B + beta S1)^{-1}(beta S1 h + f1)
+  zz.update(1., *h, -1., y1, 0.);
 }
 
 void KroneckerPreconditioner::apply(const MV &X, MV &Y, Teuchos::ETransp mode,
@@ -188,48 +261,65 @@ void KroneckerPreconditioner::back_substitute() const
 
 void KroneckerPreconditioner::solve_block(const Block &b) const
 {
-  const std::size_t n = space_map->getNodeNumElements();
   const unsigned int j0 = b.first;
   if (b.size == 1)
   {
     w1->assign(*y[j0]);
-    inner(b, *w1, *y[j0]);
+    if (inner_its > 0)
+      inner_count += inner_gmres(b.op, b.op_prec, *w1, *y[j0], inner_its, inner_tol);
+    else
+      b.spatial(*w1, *y[j0]);
+    return;
   }
-  else if (!presb)
+  Vec &y1 = *y[j0], &y2 = *y[j0 + 1];
+  if (!presb)
   {
-    {
-      auto in = b.in->getDataNonConst();
-      auto r1 = y[j0]->getData();
-      auto r2 = y[j0 + 1]->getData();
-      for (std::size_t i = 0; i < n; ++i)
-      {
-        in[2 * i] = r1[i];
-        in[2 * i + 1] = r2[i];
-      }
-    }
-    inner(b, *b.in, *b.out);
-    auto out = b.out->getData();
-    auto y1 = y[j0]->getDataNonConst();
-    auto y2 = y[j0 + 1]->getDataNonConst();
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      y1[i] = out[2 * i];
-      y2[i] = out[2 * i + 1];
-    }
+    interleave(y1, y2, *b.in);
+    if (inner_its > 0)
+      inner_count += inner_gmres(b.op, b.op_prec, *b.in, *b.out, inner_its, inner_tol);
+    else
+      b.spatial(*b.in, *b.out);
+    deinterleave(*b.out, y1, y2);
+    return;
+  }
+  // [[B, -beta S1], [beta S1, B]] [y1; zz] = [f1; f2], f1 = r1, f2 = rho r2,
+  // y2 = sigma zz.
+  y2.scale(b.rho);
+  if (inner_its > 0)
+  {
+    const std::size_t n = space_map->getNodeNumElements();
+    b.in->offsetViewNonConst(space_map, 0)->assign(y1);
+    b.in->offsetViewNonConst(space_map, n)->assign(y2);
+    inner_count += inner_gmres(b.op, b.op_prec, *b.in, *b.out, inner_its, inner_tol);
+    y1.assign(*b.out->offsetView(space_map, 0));
+    y2.assign(*b.out->offsetView(space_map, n));
   }
   else
+    b.presb(y1, y2, y1, y2);
+  y2.scale(b.sigma);
+}
+
+void KroneckerPreconditioner::interleave(const Vec &a, const Vec &b, Vec &ab)
+{
+  auto out = ab.getDataNonConst();
+  auto r1 = a.getData();
+  auto r2 = b.getData();
+  for (Teuchos_Ordinal i = 0; i < r1.size(); ++i)
   {
-    // [[B, -beta S1], [beta S1, B]] [y1; zz] = [f1; f2], f2 = rho r2, y2 = sigma zz.
-    Vec &f1 = *y[j0];
-    Vec &r2 = *y[j0 + 1];
-    w1->update(1., f1, b.rho, r2, 0.); // f1 + f2
-    inner(b, *w1, *h);                 // h = y1 + zz
-    S1_t->apply(*h, *w2);
-    w2->update(1., f1, b.beta); // beta S1 h + f1
-    inner(b, *w2, *w1);         // y1 = (B + beta S1)^{-1}(beta S1 h + f1)
-    y[j0]->assign(*w1);
-    h->update(-1., *w1, 1.); // zz = h - y1
-    y[j0 + 1]->update(b.sigma, *h, 0.);
+    out[2 * i] = r1[i];
+    out[2 * i + 1] = r2[i];
+  }
+}
+
+void KroneckerPreconditioner::deinterleave(const Vec &ab, Vec &a, Vec &b)
+{
+  auto in = ab.getData();
+  auto y1 = a.getDataNonConst();
+  auto y2 = b.getDataNonConst();
+  for (Teuchos_Ordinal i = 0; i < y1.size(); ++i)
+  {
+    y1[i] = in[2 * i];
+    y2[i] = in[2 * i + 1];
   }
 }
 
