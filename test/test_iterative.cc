@@ -481,6 +481,17 @@ TEST(Stagnation, KeysHaveDefaults)
 
 namespace
 {
+/// A random load (seed) on one slab at t = 0.1, tau = 0.05, and its UMFPACK solution.
+void umfpack_reference(const Space<2> &space, const TemporalBasis &basis,
+                       unsigned int seed, bool adjoint, Vector<double> &load,
+                       Vector<double> &U)
+{
+  SlabOperator<2> direct(space, basis, SlabSolverOptions::direct(true));
+  direct.prepare(0.1, 0.05);
+  load = random_vector(direct.n_slab_dofs(), seed);
+  direct.solve(load, U, adjoint);
+}
+
 TEST(Amg, KroneckerPreconditionersWithAmgAgreeWithUmfpack)
 {
   // ML AMG (deal.II PreconditionAMG, NSSA) as the inner solver of the temporal mode
@@ -492,11 +503,8 @@ TEST(Amg, KroneckerPreconditionersWithAmgAgreeWithUmfpack)
     for (const unsigned int r : {0u, 1u, 2u})
     {
       const TemporalBasis basis(r);
-      SlabOperator<2> direct(*s.space, basis, SlabSolverOptions::direct(true));
-      direct.prepare(0.1, 0.05);
-      const Vector<double> load = random_vector(direct.n_slab_dofs(), 21 + r);
-      Vector<double> Ud;
-      direct.solve(load, Ud, adjoint);
+      Vector<double> load, Ud;
+      umfpack_reference(*s.space, basis, 21 + r, adjoint, load, Ud);
       for (const std::string prec : {"kronecker", "kronecker_presb"})
         for (const std::string smoother : {"ilu", "gauss_seidel"})
         {
@@ -536,11 +544,8 @@ TEST(InnerIterations, KroneckerWithInnerGmresAgreesWithUmfpackInFewOuterIteratio
     for (const unsigned int r : {0u, 2u, 3u})
     {
       const TemporalBasis basis(r);
-      SlabOperator<2> direct(*s.space, basis, SlabSolverOptions::direct(true));
-      direct.prepare(0.1, 0.05);
-      const Vector<double> load = random_vector(direct.n_slab_dofs(), 31 + r);
-      Vector<double> Ud;
-      direct.solve(load, Ud, adjoint);
+      Vector<double> load, Ud;
+      umfpack_reference(*s.space, basis, 31 + r, adjoint, load, Ud);
       for (const std::string prec : {"kronecker", "kronecker_presb"})
         for (const auto spatial : {SpatialPreconditioner::ilu, SpatialPreconditioner::amg})
         {
