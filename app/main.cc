@@ -5,6 +5,7 @@
 #include "study/dwr.h"
 #include "study/study.h"
 
+#include <cstdlib>
 #include <iostream>
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -28,6 +29,22 @@ a run / DWR loop not started because its memory estimate exceeds adaptivity.max_
 Outputs (in output.directory): summary.json, convergence.csv (study.mode = convergence),
 solution.pvd + solution-NNNN.vtu (study.mode = single).
 )";
+/// The number of processes an MPI launcher started (OpenMPI, PMIx, MPICH/Hydra), and
+/// this one's rank; 1 and 0 without a launcher. Read from the launcher's environment, so
+/// that a serial run does not pay for MPI_Init.
+std::pair<long, long> launcher_ranks()
+{
+  const char *names[][2] = {{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
+                            {"PMIX_SIZE", "PMIX_RANK"},
+                            {"PMI_SIZE", "PMI_RANK"}};
+  for (const auto &n : names)
+    if (const char *size = std::getenv(n[0]))
+    {
+      const char *rank = std::getenv(n[1]);
+      return {std::atol(size), rank ? std::atol(rank) : 0};
+    }
+  return {1, 0};
+}
 } // namespace
 
 int main(int argc, char **argv)
@@ -57,6 +74,16 @@ int main(int argc, char **argv)
       throw InputError("unknown command '" + args[0] + "'; expected run, defaults or --help");
     if (args.size() < 2)
       throw InputError("run: missing CONFIG.json");
+    // Every rank would compute the same and write the same files: refuse, once.
+    if (const auto [ranks, rank] = launcher_ranks(); ranks > 1)
+    {
+      if (rank != 0)
+        return exit_input_error;
+      throw InputError("started by an MPI launcher with " + std::to_string(ranks) +
+                       " processes; anisodwr runs as one process (its slab solvers and "
+                       "the estimator use the machine's cores through threads): run it "
+                       "without mpirun, or with -np 1");
+    }
     std::vector<std::string> overrides;
     std::string output;
     for (std::size_t i = 2; i < args.size(); ++i)
