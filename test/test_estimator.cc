@@ -299,6 +299,61 @@ TEST(SpaceIndicator, PartsSumToEtaHInBothForms)
   EXPECT_NEAR(cells, pr.eta_h_total(), 1e-12 * scale);
 }
 
+// The indicators are linear in the goals: with weights w_i, the estimate of
+// sum_i w_i J_i (one adjoint for the weighted goals) equals sum_i w_i times the estimate
+// of J_i alone (its own adjoint), cell by cell, direction by direction and slab by slab
+// (goal.weights = estimate relies on it). Moving hump, Q1/Q2, dG(1), both point goals,
+// weights 0.7 and -1.3, both forms of eta_h.
+TEST(Estimator, IndicatorsAreLinearInTheGoals)
+{
+  HumpProblem hump(1);
+  ASSERT_EQ(hump.goals.size(), 2u);
+  const double w[2] = {0.7, -1.3};
+  SlabOperator<2> opq(hump.adjoint, hump.basis, SlabSolverOptions::direct(true));
+  const auto adjoint_of = [&](const std::vector<GoalSpec> &goals)
+  {
+    return march_adjoint(hump.adjoint, hump.mesh, hump.basis, opq,
+                         assemble_goal_vectors(hump.adjoint, goals), MarchOptions{});
+  };
+  for (const auto form : {SpaceIndicator::average, SpaceIndicator::primal_residual})
+  {
+    std::vector<GoalSpec> weighted;
+    Indicators<2> sum;
+    for (unsigned int g = 0; g < 2; ++g)
+    {
+      const GoalSpec one = unweighted(hump.goals[g]);
+      const auto Zg = adjoint_of({one});
+      add_scaled(sum, w[g],
+                 estimate(hump.primal, hump.adjoint, hump.mesh, hump.basis, hump.U, Zg,
+                          {one}, TimeIndicator::average, nullptr, form));
+      weighted.push_back(one);
+      weighted.back().weight = w[g];
+    }
+    const auto Zw = adjoint_of(weighted);
+    const auto direct = estimate(hump.primal, hump.adjoint, hump.mesh, hump.basis, hump.U,
+                                 Zw, weighted, TimeIndicator::average, nullptr, form);
+    double scale = 0;
+    for (const auto &c : direct.eta_h_cell)
+      scale += std::abs(c[0]) + std::abs(c[1]);
+    ASSERT_GT(scale, 0.);
+    const double tol = 1e-10 * scale;
+    ASSERT_EQ(sum.eta_h_cell.size(), direct.eta_h_cell.size());
+    for (unsigned int c = 0; c < direct.eta_h_cell.size(); ++c)
+    {
+      EXPECT_NEAR(sum.eta_h_cell[c][0], direct.eta_h_cell[c][0], tol);
+      EXPECT_NEAR(sum.eta_h_cell[c][1], direct.eta_h_cell[c][1], tol);
+      EXPECT_NEAR(sum.eta_tau_cell[c], direct.eta_tau_cell[c], tol);
+    }
+    for (unsigned int n = 0; n < direct.eta_tau_slab.size(); ++n)
+      EXPECT_NEAR(sum.eta_tau_slab[n], direct.eta_tau_slab[n], tol);
+    EXPECT_NEAR(sum.eta_h_total(), direct.eta_h_total(), tol);
+    EXPECT_NEAR(sum.eta_tau, direct.eta_tau, tol);
+    EXPECT_NEAR(sum.eta_h_rho, direct.eta_h_rho, tol);
+    EXPECT_NEAR(sum.eta_h_rhostar, direct.eta_h_rhostar, tol);
+    EXPECT_NEAR(sum.eta_h_supg, direct.eta_h_supg, tol);
+  }
+}
+
 // The estimator's cells are shared among threads in chunks whose partial sums are added
 // in a fixed order: one thread and several give the same indicators up to round-off
 // (deal.II's FEValues reuses data between similar consecutive cells, so the last bits

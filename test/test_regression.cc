@@ -9,7 +9,9 @@
 //    cut-line CSVs are written;
 //  - boundary_layer: the layer-normal indicator eta_h,x dominates and anisotropic
 //    refinement produces thin cells (ar_max >= 16 by loop 6);
-//  - a DoF budget stops the loop cleanly and keeps the finished rows.
+//  - a DoF budget stops the loop cleanly and keeps the finished rows;
+//  - goal.weights = estimate: the weighted estimate is the sum of the goals' |eta_i| /
+//    |J_i|, and the weighted error takes each goal's error with the sign of its eta_i.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -184,4 +186,35 @@ TEST(Budget, DofBudgetStopsCleanlyAndKeepsRows)
   while (std::getline(tex, line))
     rows += line.find("\\\\") != std::string::npos;
   EXPECT_EQ(rows, t.size() + 1) << "header + one LaTeX row per loop";
+}
+
+TEST(Goals, EstimateWeightsAddTheGoalsEstimatesWithoutCancelling)
+{
+  // w_i = sign(eta_i) / |J_i(u_h)| with eta_i from goal i's own adjoint: eta of J_w (its
+  // indicators are sum_i w_i times goal i's) is sum_i |eta_i| / |J_i(u_h)|, and the
+  // error of J_w is sum_i sign(eta_i) (J_i(u) - J_i(u_h)) / |J_i(u_h)|. Moving hump,
+  // 6 loops, to 1e-7 relative (loops.csv prints 8 digits).
+  const std::string dir = "regression_estimate_weights";
+  ASSERT_EQ(run("moving_hump.json", dir,
+                "--set goal.weights=estimate --set adaptivity.loops=6 "
+                "--set output.vtu_loops=0"),
+            0);
+  const Table t = read_csv(dir + "/loops.csv");
+  const Table p = read_csv(dir + "/probes.csv");
+  ASSERT_EQ(t.size(), 6u);
+  ASSERT_EQ(p.size(), 6u);
+  for (std::size_t l = 0; l < t.size(); ++l)
+  {
+    double eta = 0, err = 0;
+    for (const std::string g : {"u_xe1_T", "u_xe2_T"})
+    {
+      const double Ji = std::abs(p[l].at("J_" + g)), eta_i = t[l].at("eta_" + g);
+      ASSERT_GT(Ji, 0.);
+      eta += std::abs(eta_i) / Ji;
+      err += (eta_i >= 0 ? 1. : -1.) * t[l].at("err_" + g) / Ji;
+    }
+    EXPECT_NEAR(t[l].at("eta_tauh"), eta, 1e-7 * eta) << "loop " << l + 1;
+    EXPECT_NEAR(t[l].at("J_error"), std::abs(err), 1e-7 * std::abs(err) + 1e-12)
+        << "loop " << l + 1;
+  }
 }

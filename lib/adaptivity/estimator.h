@@ -68,6 +68,37 @@ template <int dim> struct Indicators
   }
 };
 
+/// sum += w x, field by field; an empty sum takes x's sizes. The indicators are linear
+/// in the adjoint and the goals, so the estimate of sum_i w_i J_i is sum_i w_i times the
+/// estimate of J_i alone (with its own adjoint). no_lift (a mesh property) is x's.
+template <int dim>
+void add_scaled(Indicators<dim> &sum, double w, const Indicators<dim> &x)
+{
+  if (sum.eta_h_cell.empty())
+  {
+    sum.eta_h_cell.assign(x.eta_h_cell.size(), std::array<double, dim>{});
+    sum.eta_tau_cell.assign(x.eta_tau_cell.size(), 0.);
+    sum.eta_tau_slab.assign(x.eta_tau_slab.size(), 0.);
+  }
+  for (std::size_t c = 0; c < x.eta_h_cell.size(); ++c)
+  {
+    for (int d = 0; d < dim; ++d)
+      sum.eta_h_cell[c][d] += w * x.eta_h_cell[c][d];
+    sum.eta_tau_cell[c] += w * x.eta_tau_cell[c];
+  }
+  for (std::size_t n = 0; n < x.eta_tau_slab.size(); ++n)
+    sum.eta_tau_slab[n] += w * x.eta_tau_slab[n];
+  for (int d = 0; d < dim; ++d)
+    sum.eta_h[d] += w * x.eta_h[d];
+  sum.eta_tau += w * x.eta_tau;
+  sum.eta_tau_rho += w * x.eta_tau_rho;
+  sum.eta_tau_rhostar += w * x.eta_tau_rhostar;
+  sum.eta_h_rho += w * x.eta_h_rho;
+  sum.eta_h_rhostar += w * x.eta_h_rhostar;
+  sum.eta_h_supg += w * x.eta_h_supg;
+  sum.no_lift = x.no_lift;
+}
+
 /// The primal solved once more in dG(r+1) (basis.degree() = r+1) on the same slabs and
 /// spatial space (TimeIndicator::higher_order).
 struct HigherOrderPrimal

@@ -279,7 +279,11 @@ std::vector<Entry> goal_entries()
       {"goal", "weights", "1", m(&S::weights), text,
        "Weights w_i of J_w = sum w_i J_i: one number for all goals, a comma list (one "
        "per "
-       "goal), or auto (w_i = sign(J_i(I_2h u) - J_i(u_h)) / max(|J_i(u_h)|, 1e-12))."},
+       "goal), auto (w_i = sign(J_i(I_2h u) - J_i(u_h)) / max(|J_i(u_h)|, 1e-12)) or "
+       "estimate (w_i = sign(eta_i) / max(|J_i(u_h)|, 1e-12), eta_i from each goal's own "
+       "adjoint: one adjoint march per goal with one factorization, one estimate per "
+       "goal; the indicators of J_w are sum_i w_i times goal i's, so the goals' "
+       "estimates add up without cancelling)."},
   };
 }
 

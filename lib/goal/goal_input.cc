@@ -115,13 +115,13 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
                        "diameter " +
                        six_digits(diameter) + " of the domain " +
                        scene.domain_text() + " of scene '" + scene.name() + "'");
-  if (in.weights != "auto")
+  if (in.weights != "auto" && in.weights != "estimate")
   {
     const auto w = split(in.weights, ',');
     if (w.size() != 1 && w.size() != goals.size())
       throw InputError(in.weights_source + ": invalid value '" + in.weights +
                        "' for key 'goal.weights'; "
-                       "expected auto, one number or " +
+                       "expected auto, estimate, one number or " +
                        std::to_string(goals.size()) +
                        " comma-separated numbers (one per goal)");
     const auto v = numbers(in.weights, "goal.weights", w.size(), in.weights_source);

@@ -111,9 +111,23 @@ private:
   bool solve_and_estimate(LoopRow &row, Indicators<2> &ind);
   /// The loop's memory estimate, checked against the limit (ResourceLimitError).
   void check_loop_memory(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint);
-  /// J_i(u_tau h), the weights (auto: from the patch lift) and the weighted J.
+  /// J_i(u_tau h), the weights (auto: from the patch lift) and the weighted J (not yet
+  /// for goal.weights = estimate).
   void evaluate_goals(LoopRow &row, const Space<2> &primal,
                       const std::vector<Vector<double>> &U);
+  /// The weights of the goals into row, and the weighted J and J_exact.
+  void weigh_goals(LoopRow &row) const;
+  /// The adjoint(s) and the indicators ind of the weighted goal: one adjoint for
+  /// J_w = sum_i w_i J_i, or (goal.weights = estimate) one per goal, w_i = sign(eta_i) /
+  /// max(|J_i(u_h)|, 1e-12) and ind = sum_i w_i ind_i. Sets t_adjoint, t_estimate.
+  void adjoint_and_estimate(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
+                            const Space<2> &adjoint, const std::vector<Vector<double>> &U,
+                            const HigherOrderPrimal *hi, const MarchOptions &opt);
+  /// goal.weights = estimate: see adjoint_and_estimate.
+  void estimate_by_goal(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
+                        const Space<2> &adjoint, std::unique_ptr<SlabOperator<2>> &opq,
+                        const std::vector<Vector<double>> &U, const HigherOrderPrimal *hi,
+                        const MarchOptions &opt);
   /// Probes and cut lines of u(T), and the VTU of the loop.
   void write_loop_outputs(LoopRow &row, const Space<2> &primal, const Vector<double> &uT,
                           const Indicators<2> &ind, const std::vector<double> &ar_cell);
@@ -131,7 +145,7 @@ private:
   const Parameters &prm;
   const std::unique_ptr<Scene<2>> scene;
   std::vector<GoalSpec> goals;
-  const bool auto_weights, has_exact;
+  const bool auto_weights, estimate_weights, has_exact;
   std::vector<double> J_exact;
   MarkingOptions marking;
   Triangulation<2> tria;
@@ -182,7 +196,8 @@ std::unique_ptr<Scene<2>> scene_in_directory(const Parameters &prm)
 AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
     : prm(prm), scene(scene_in_directory(prm)),
       goals(make_goals(goal_input(prm), *scene)),
-      auto_weights(prm.goal.weights == "auto"), has_exact(scene->exact() != nullptr),
+      auto_weights(prm.goal.weights == "auto"),
+      estimate_weights(prm.goal.weights == "estimate"), has_exact(scene->exact() != nullptr),
       J_exact(goals.size(), nan), marking(marking_options(prm)),
       tria(tria_smoothing<2>(marking)), basis(prm.discretization.r),
       q(prm.adaptivity.adjoint_degree ? prm.adaptivity.adjoint_degree
@@ -298,12 +313,35 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   row.t_primal = t.wall_time();
 
   evaluate_goals(row, primal, U);
+  adjoint_and_estimate(row, ind, primal, adjoint, U, hi_ptr, opt);
+  for (double e : ind.eta_tau_slab)
+    if (!std::isfinite(e))
+      throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
   if (prm.adaptivity.measure_time_error)
     std::tie(row.err_tau, row.err_tau_order) = measure_time_error(
         primal, mesh, basis, slab_solver_options(prm), goals, row.J, opt);
+  copy_indicators(ind, row);
+  std::vector<double> ar_cell;
+  row.ar = max_aspect_ratio(tria, primal.mapping(), &ar_cell);
 
-  t.restart();
+  Vector<double> uT;
+  combine_blocks(U.back(), basis.right_trace(), uT);
+  write_loop_outputs(row, primal, uT, ind, ar_cell);
+  return true;
+}
+
+void AdaptiveLoop::adjoint_and_estimate(LoopRow &row, Indicators<2> &ind,
+                                        const Space<2> &primal, const Space<2> &adjoint,
+                                        const std::vector<Vector<double>> &U,
+                                        const HigherOrderPrimal *hi, const MarchOptions &opt)
+{
   auto opq = std::make_unique<SlabOperator<2>>(adjoint, basis, slab_solver_options(prm));
+  if (estimate_weights)
+  {
+    estimate_by_goal(row, ind, primal, adjoint, opq, U, hi, opt);
+    return;
+  }
+  Timer t;
   const auto Z = march_adjoint(adjoint, mesh, basis, *opq,
                                assemble_goal_vectors(adjoint, goals), opt);
   row.t_adjoint = t.wall_time();
@@ -313,24 +351,46 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   // it runs, unless the per-goal adjoints still need them.
   if (!prm.adaptivity.per_goal_estimates)
     opq.reset();
-
   t.restart();
   ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, prm.adaptivity.time_indicator,
-                 hi_ptr, prm.adaptivity.space_indicator);
+                 hi, prm.adaptivity.space_indicator);
   row.t_estimate = t.wall_time();
-  for (double e : ind.eta_tau_slab)
-    if (!std::isfinite(e))
-      throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
   if (prm.adaptivity.per_goal_estimates)
-    estimate_per_goal(row, primal, adjoint, *opq, U, hi_ptr, opt);
-  copy_indicators(ind, row);
-  std::vector<double> ar_cell;
-  row.ar = max_aspect_ratio(tria, primal.mapping(), &ar_cell);
+    estimate_per_goal(row, primal, adjoint, *opq, U, hi, opt);
+}
 
-  Vector<double> uT;
-  combine_blocks(U.back(), basis.right_trace(), uT);
-  write_loop_outputs(row, primal, uT, ind, ar_cell);
-  return true;
+void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
+                                    const Space<2> &primal, const Space<2> &adjoint,
+                                    std::unique_ptr<SlabOperator<2>> &opq,
+                                    const std::vector<Vector<double>> &U,
+                                    const HigherOrderPrimal *hi, const MarchOptions &opt)
+{
+  // All adjoints first (one factorization serves them), then the estimates without the
+  // adjoint's factors in memory.
+  Timer t;
+  std::vector<std::vector<Vector<double>>> Z;
+  for (const auto &goal : goals)
+    Z.push_back(march_adjoint(adjoint, mesh, basis, *opq,
+                              assemble_goal_vectors(adjoint, {unweighted(goal)}), opt));
+  row.t_adjoint = t.wall_time();
+  report_auto_choice(row.loop, 1, *opq);
+  row.lu_adjoint_mb = opq->timings().factor_mb;
+  opq.reset();
+  t.restart();
+  ind = Indicators<2>();
+  for (std::size_t i = 0; i < goals.size(); ++i)
+  {
+    const auto part = estimate(primal, adjoint, mesh, basis, U, Z[i], {unweighted(goals[i])},
+                               prm.adaptivity.time_indicator, hi,
+                               prm.adaptivity.space_indicator);
+    Z[i] = {};
+    row.eta_goal.push_back(part.eta_h_total() + part.eta_tau);
+    goals[i].weight =
+        (row.eta_goal[i] >= 0 ? 1. : -1.) / std::max(std::abs(row.J_goal[i]), 1e-12);
+    add_scaled(ind, goals[i].weight, part);
+  }
+  weigh_goals(row);
+  row.t_estimate = t.wall_time();
 }
 
 void AdaptiveLoop::estimate_per_goal(LoopRow &row, const Space<2> &primal,
@@ -363,7 +423,8 @@ void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
 void AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
                                      const Space<2> &adjoint)
 {
-  const MemoryModel model = memory_model(prm, primal, &adjoint, row.n_t, base_mb);
+  const MemoryModel model = memory_model(prm, primal, &adjoint, row.n_t, base_mb,
+                                           static_cast<unsigned int>(goals.size()));
   row.mem_estimate = estimate_memory(model).total_mb;
   check_memory(
       "loop " + std::to_string(row.loop), row.mem_estimate * mem_ratio, mem_limit, model,
@@ -385,6 +446,17 @@ void AdaptiveLoop::evaluate_goals(LoopRow &row, const Space<2> &primal,
       const double d = lifted_goal(primal, goals[g], mesh, basis, U) - row.J_goal[g];
       goals[g].weight = (d >= 0 ? 1. : -1.) / std::max(std::abs(row.J_goal[g]), 1e-12);
     }
+  }
+  if (!estimate_weights)
+    weigh_goals(row);
+}
+
+void AdaptiveLoop::weigh_goals(LoopRow &row) const
+{
+  row.weights.clear();
+  row.J = 0;
+  for (std::size_t g = 0; g < goals.size(); ++g)
+  {
     row.weights.push_back(goals[g].weight);
     row.J += goals[g].weight * row.J_goal[g];
     if (has_exact)

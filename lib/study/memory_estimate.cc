@@ -123,7 +123,8 @@ SlabSystemSize slab_system(const Space<2> &space, const SlabSolverOptions &optio
 }
 
 MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
-                         const Space<2> *adjoint, unsigned int n_slabs, double base_mb)
+                         const Space<2> *adjoint, unsigned int n_slabs, double base_mb,
+                         unsigned int n_goals)
 {
   const SlabSolverOptions options = slab_solver_options(prm);
   const unsigned int r = prm.discretization.r;
@@ -138,7 +139,10 @@ MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
   m.krylov_vectors = prm.solver.iterative.restart + 2;
   if (adjoint)
   {
-    m.adjoints_stored = prm.adaptivity.per_goal_estimates ? 2 : 1;
+    // goal.weights = estimate marches every goal's adjoint before estimating
+    m.adjoints_stored = prm.goal.weights == "estimate"       ? std::max(1u, n_goals)
+                        : prm.adaptivity.per_goal_estimates ? 2
+                                                            : 1;
     m.extra_primal_slabs = prm.adaptivity.measure_time_error ? 4 * n_slabs : 0;
     // time_indicator = higher_order keeps the dG(r+1) primal: (r+2)/(r+1) primal slabs each
     if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)

@@ -35,7 +35,9 @@ struct MemoryModel
   /// so the operator holds only M, A, UMFPACK's copy of K and the factors.
   bool lean_direct = false;
   unsigned int krylov_vectors = 32; ///< iterative: restart + 2 vectors of the slab size
-  unsigned int adjoints_stored = 1; ///< 2 with adaptivity.per_goal_estimates
+  /// adjoint solutions held at once: 2 with adaptivity.per_goal_estimates, the number
+  /// of goals with goal.weights = estimate
+  unsigned int adjoints_stored = 1;
   /// adaptivity.measure_time_error: the primal on 4 N slabs beside the N-slab solution.
   unsigned int extra_primal_slabs = 0;
   double base_mb = 0; ///< resident memory of the process before the run's data
@@ -72,10 +74,11 @@ MemoryLimit memory_limit(const Parameters &prm);
 SlabSystemSize slab_system(const Space<2> &space, const SlabSolverOptions &options,
                            unsigned int r);
 
-/// The model of one run (study levels: primal only; DWR loops: with the adjoint space)
-/// for the parameters `prm`.
+/// The model of one run (study levels: primal only; DWR loops: with the adjoint space
+/// and n_goals goals) for the parameters `prm`.
 MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
-                         const Space<2> *adjoint, unsigned int n_slabs, double base_mb);
+                         const Space<2> *adjoint, unsigned int n_slabs, double base_mb,
+                         unsigned int n_goals = 1);
 
 /// Throws ResourceLimitError with a one-line message naming `what` (e.g. "loop 3"),
 /// the estimate, the limit and the sizes if estimate_mb > limit.mb.
