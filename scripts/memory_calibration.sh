@@ -17,8 +17,8 @@ run() {
   echo "== $name" >&2
   "$bin" run "$@" --output "$OUT/$name" >"$OUT/$name.log"
 }
-run moving_hump_direct "$ROOT/config/moving_hump.json" --set discretization.r=1 --set adaptivity.space_indicator=average --set adaptivity.loops=16 --set output.vtu_loops=0
-run moving_hump_krylov "$ROOT/config/moving_hump.json" --set discretization.r=1 --set adaptivity.space_indicator=average --set adaptivity.loops=14 \
+run moving_hump_direct "$ROOT/config/moving_hump.json" --set goal.weights=1 --set discretization.r=1 --set adaptivity.space_indicator=average --set adaptivity.loops=16 --set output.vtu_loops=0
+run moving_hump_krylov "$ROOT/config/moving_hump.json" --set goal.weights=1 --set discretization.r=1 --set adaptivity.space_indicator=average --set adaptivity.loops=14 \
   --set solver.type=iterative --set output.vtu_loops=0
 run hemker "$ROOT/config/hemker.json" --set adaptivity.loops=17 --set output.vtu_loops=0
 for ref in 6 7 8; do
