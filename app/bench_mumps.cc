@@ -43,6 +43,12 @@ namespace
 const char *header = "ranks,p,r,eps,refinements,N_space,N_slab,solver,build_s,"
                      "factorize_s,solve_s,residual,peak_mb_max,peak_mb_sum";
 
+void for_each_next(std::vector<SparseMatrix<double>::const_iterator> &e)
+{
+  for (auto &it : e)
+    ++it;
+}
+
 /// K's rows of the nodes [i0, i1) into the PETSc matrix (locally owned rows).
 void copy_rows(const std::vector<KronTerm> &terms, unsigned int m, unsigned int i0,
                unsigned int i1, PETScWrappers::MPI::SparseMatrix &K)
@@ -54,18 +60,27 @@ void copy_rows(const std::vector<KronTerm> &terms, unsigned int m, unsigned int 
     {
       cols.clear();
       vals.clear();
-      const auto &S0 = *terms[0].S;
-      for (auto e = S0.begin(i); e != S0.end(i); ++e)
+      // all S_t share one pattern: their row entries are visited in lockstep
+      std::vector<SparseMatrix<double>::const_iterator> e;
+      for (const auto &t : terms)
+        e.push_back(t.S->begin(i));
+      for (; e[0] != terms[0].S->end(i); for_each_next(e))
         for (unsigned int l = 0; l < m; ++l)
         {
           double v = 0;
-          for (const auto &t : terms)
-            v += t.T(k, l) * t.S->el(i, e->column());
-          cols.push_back(e->column() * m + l);
+          for (std::size_t q = 0; q < terms.size(); ++q)
+            v += terms[q].T(k, l) * e[q]->value();
+          cols.push_back(e[0]->column() * m + l);
           vals.push_back(v);
         }
       K.set(i * m + k, cols.size(), cols.data(), vals.data());
     }
+}
+
+/// The right-hand side, entry i.
+double load(types::global_dof_index i)
+{
+  return 1. + double(i % 7);
 }
 
 /// The owned rows' sparsity of K (nodes [i0, i1)).
@@ -127,6 +142,15 @@ int main(int argc, char **argv)
   const auto &terms = op.full_terms();
   const unsigned int m = basis.n_dofs(), n = space.n_dofs();
   const types::global_dof_index N = types::global_dof_index(n) * m;
+  const auto print_row = [&](const std::string &solver, double build, double factorize,
+                             double solve, double residual, double peak_max,
+                             double peak_sum)
+  {
+    std::cout << ranks << "," << p << "," << r << "," << eps << "," << refs << "," << n
+              << "," << N << "," << solver << "," << build << "," << factorize << ","
+              << solve << "," << residual << "," << peak_max << "," << peak_sum
+              << std::endl;
+  };
 
   if (umfpack)
   {
@@ -137,7 +161,7 @@ int main(int argc, char **argv)
     assemble_kron(terms, pattern, Kd);
     Vector<double> bd(N), xd(N), rd(N);
     for (types::global_dof_index i = 0; i < N; ++i)
-      bd(i) = 1. + double(i % 7);
+      bd(i) = load(i);
     const double build_d = t.wall_time();
     t.restart();
     SparseDirectUMFPACK lu;
@@ -150,10 +174,8 @@ int main(int argc, char **argv)
     const double solve_d = t.wall_time() / 3;
     Kd.vmult(rd, xd);
     rd -= bd;
-    std::cout << 1 << "," << p << "," << r << "," << eps << "," << refs << "," << n << ","
-              << N << ",umfpack," << build_d << "," << factorize_d << "," << solve_d << ","
-              << rd.l2_norm() / bd.l2_norm() << "," << peak_memory_mb() << ","
-              << peak_memory_mb() << std::endl;
+    print_row("umfpack", build_d, factorize_d, solve_d, rd.l2_norm() / bd.l2_norm(),
+              peak_memory_mb(), peak_memory_mb());
     return 0;
   }
   Timer t;
@@ -167,7 +189,7 @@ int main(int argc, char **argv)
   K.compress(VectorOperation::insert);
   PETScWrappers::MPI::Vector b(owned, comm), x(owned, comm), res(owned, comm);
   for (const auto i : owned)
-    b(i) = 1. + double(i % 7);
+    b(i) = load(i);
   b.compress(VectorOperation::insert);
   const double build = t.wall_time();
 
@@ -187,9 +209,7 @@ int main(int argc, char **argv)
   const double peak_max = Utilities::MPI::max(peak, comm),
                peak_sum = Utilities::MPI::sum(peak, comm);
   if (rank == 0)
-    std::cout << ranks << "," << p << "," << r << "," << eps << "," << refs << "," << n
-              << "," << N << ",mumps," << build << "," << factorize << "," << solve << ","
-              << residual << "," << peak_max << "," << peak_sum << std::endl;
+    print_row("mumps", build, factorize, solve, residual, peak_max, peak_sum);
 
   return 0;
 }

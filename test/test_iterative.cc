@@ -569,14 +569,20 @@ TEST(InnerIterations, KroneckerWithInnerGmresAgreesWithUmfpackInFewOuterIteratio
             EXPECT_EQ(it.timings().n_fallbacks, 0u) << what;
             outer[inner > 0] = it.timings().max_krylov_iterations;
             if (inner > 0)
+            {
               EXPECT_GE(it.timings().inner_iterations, it.timings().krylov_iterations)
                   << what;
+            }
             else
+            {
               EXPECT_EQ(it.timings().inner_iterations, 0u) << what;
+            }
           }
           EXPECT_LE(outer[1], 6u) << what;
           if (outer[0] > 2) // not where one application is an exact solve (AMG, r = 0)
+          {
             EXPECT_LT(outer[1], outer[0]) << what;
+          }
         }
     }
   }

@@ -97,10 +97,6 @@ struct IterativeOptions
   /// per application, smoother amg_smoother).
   SpatialPreconditioner spatial_preconditioner = SpatialPreconditioner::ilu;
   AmgSmoother amg_smoother = AmgSmoother::ilu;
-  /// Stagnation: a solve whose residual has not fallen by stagnation_factor over the
-  /// last stagnation_window iterations stops and counts as failed (window 0 or
-  /// factor <= 1: off). gmres/fgmres watch the implicit residual every iteration;
-  /// bicgstab runs in chunks of `window` iterations and compares true residuals.
   /// Inner iterations of the kronecker* preconditioners: 0 = each temporal mode block
   /// is approximated by one application of its spatial preconditioner (ILU or AMG);
   /// k > 0 = solved by at most k right-preconditioned GMRES iterations to the relative
@@ -109,6 +105,10 @@ struct IterativeOptions
   /// applications, so gmres runs flexible (as fgmres); bicgstab is rejected.
   unsigned int inner_iterations = 0;
   double inner_tolerance = 1e-2;
+  /// Stagnation: a solve whose residual has not fallen by stagnation_factor over the
+  /// last stagnation_window iterations stops and counts as failed (window 0 or
+  /// factor <= 1: off). gmres/fgmres watch the implicit residual every iteration;
+  /// bicgstab runs in chunks of `window` iterations and compares true residuals.
   unsigned int stagnation_window = 50;
   double stagnation_factor = 10.;
 };

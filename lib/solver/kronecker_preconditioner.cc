@@ -265,20 +265,14 @@ void KroneckerPreconditioner::solve_block(const Block &b) const
   if (b.size == 1)
   {
     w1->assign(*y[j0]);
-    if (inner_its > 0)
-      inner_count += inner_gmres(b.op, b.op_prec, *w1, *y[j0], inner_its, inner_tol);
-    else
-      b.spatial(*w1, *y[j0]);
+    solve_on_block(b, *w1, *y[j0]);
     return;
   }
   Vec &y1 = *y[j0], &y2 = *y[j0 + 1];
   if (!presb)
   {
     interleave(y1, y2, *b.in);
-    if (inner_its > 0)
-      inner_count += inner_gmres(b.op, b.op_prec, *b.in, *b.out, inner_its, inner_tol);
-    else
-      b.spatial(*b.in, *b.out);
+    solve_on_block(b, *b.in, *b.out);
     deinterleave(*b.out, y1, y2);
     return;
   }
@@ -290,13 +284,21 @@ void KroneckerPreconditioner::solve_block(const Block &b) const
     const std::size_t n = space_map->getNodeNumElements();
     b.in->offsetViewNonConst(space_map, 0)->assign(y1);
     b.in->offsetViewNonConst(space_map, n)->assign(y2);
-    inner_count += inner_gmres(b.op, b.op_prec, *b.in, *b.out, inner_its, inner_tol);
+    solve_on_block(b, *b.in, *b.out);
     y1.assign(*b.out->offsetView(space_map, 0));
     y2.assign(*b.out->offsetView(space_map, n));
   }
   else
     b.presb(y1, y2, y1, y2);
   y2.scale(b.sigma);
+}
+
+void KroneckerPreconditioner::solve_on_block(const Block &b, const Vec &in, Vec &out) const
+{
+  if (inner_its > 0)
+    inner_count += inner_gmres(b.op, b.op_prec, in, out, inner_its, inner_tol);
+  else
+    b.spatial(in, out);
 }
 
 void KroneckerPreconditioner::interleave(const Vec &a, const Vec &b, Vec &ab)

@@ -92,6 +92,9 @@ private:
   void back_substitute() const;
   /// y_j for one block from the transformed right-hand side in y_j.
   void solve_block(const Block &b) const;
+  /// out = the block's operator (1x1, or its 2n form) inverted: inner GMRES
+  /// (inner_iterations > 0) or one application of its spatial preconditioner.
+  void solve_on_block(const Block &b, const Vec &in, Vec &out) const;
   /// ab = (a_0, b_0, a_1, b_1, ...) and back.
   static void interleave(const Vec &a, const Vec &b, Vec &ab);
   static void deinterleave(const Vec &ab, Vec &a, Vec &b);

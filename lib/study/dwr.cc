@@ -36,6 +36,13 @@ std::string num(double v)
   return json_number(v, 12);
 }
 
+/// sign(s) / max(|J|, 1e-12): the weight of a goal with value J whose error is taken
+/// to have the sign of s (goal.weights = auto or estimate).
+double sign_weight(double s, double J)
+{
+  return (s >= 0 ? 1. : -1.) / std::max(std::abs(J), 1e-12);
+}
+
 double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &mesh,
                   const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
@@ -123,6 +130,15 @@ private:
   void adjoint_and_estimate(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
                             const Space<2> &adjoint, const std::vector<Vector<double>> &U,
                             const HigherOrderPrimal *hi, const MarchOptions &opt);
+  /// The adjoint of one goal alone (weight 1), marched with opq.
+  std::vector<Vector<double>> goal_adjoint(const Space<2> &adjoint, SlabOperator<2> &opq,
+                                           const GoalSpec &goal,
+                                           const MarchOptions &opt) const;
+  /// The indicators of one goal alone (weight 1) from its adjoint Z.
+  Indicators<2> goal_estimate(const Space<2> &primal, const Space<2> &adjoint,
+                              const std::vector<Vector<double>> &U,
+                              const std::vector<Vector<double>> &Z, const GoalSpec &goal,
+                              const HigherOrderPrimal *hi) const;
   /// goal.weights = estimate: see adjoint_and_estimate.
   void estimate_by_goal(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
                         const Space<2> &adjoint, std::unique_ptr<SlabOperator<2>> &opq,
@@ -370,8 +386,7 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   Timer t;
   std::vector<std::vector<Vector<double>>> Z;
   for (const auto &goal : goals)
-    Z.push_back(march_adjoint(adjoint, mesh, basis, *opq,
-                              assemble_goal_vectors(adjoint, {unweighted(goal)}), opt));
+    Z.push_back(goal_adjoint(adjoint, *opq, goal, opt));
   row.t_adjoint = t.wall_time();
   report_auto_choice(row.loop, 1, *opq);
   row.lu_adjoint_mb = opq->timings().factor_mb;
@@ -380,13 +395,10 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   ind = Indicators<2>();
   for (std::size_t i = 0; i < goals.size(); ++i)
   {
-    const auto part = estimate(primal, adjoint, mesh, basis, U, Z[i], {unweighted(goals[i])},
-                               prm.adaptivity.time_indicator, hi,
-                               prm.adaptivity.space_indicator);
+    const auto part = goal_estimate(primal, adjoint, U, Z[i], goals[i], hi);
     Z[i] = {};
     row.eta_goal.push_back(part.eta_h_total() + part.eta_tau);
-    goals[i].weight =
-        (row.eta_goal[i] >= 0 ? 1. : -1.) / std::max(std::abs(row.J_goal[i]), 1e-12);
+    goals[i].weight = sign_weight(row.eta_goal[i], row.J_goal[i]);
     add_scaled(ind, goals[i].weight, part);
   }
   weigh_goals(row);
@@ -400,13 +412,29 @@ void AdaptiveLoop::estimate_per_goal(LoopRow &row, const Space<2> &primal,
 {
   for (const auto &goal : goals)
   {
-    const GoalSpec g = unweighted(goal);
-    const auto Zg =
-        march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, {g}), opt);
-    const auto ig = estimate(primal, adjoint, mesh, basis, U, Zg, {g},
-                             prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator);
+    const auto ig =
+        goal_estimate(primal, adjoint, U, goal_adjoint(adjoint, opq, goal, opt), goal, hi);
     row.eta_goal.push_back(ig.eta_h_total() + ig.eta_tau);
   }
+}
+
+std::vector<Vector<double>> AdaptiveLoop::goal_adjoint(const Space<2> &adjoint,
+                                                       SlabOperator<2> &opq,
+                                                       const GoalSpec &goal,
+                                                       const MarchOptions &opt) const
+{
+  return march_adjoint(adjoint, mesh, basis, opq,
+                       assemble_goal_vectors(adjoint, {unweighted(goal)}), opt);
+}
+
+Indicators<2> AdaptiveLoop::goal_estimate(const Space<2> &primal, const Space<2> &adjoint,
+                                          const std::vector<Vector<double>> &U,
+                                          const std::vector<Vector<double>> &Z,
+                                          const GoalSpec &goal,
+                                          const HigherOrderPrimal *hi) const
+{
+  return estimate(primal, adjoint, mesh, basis, U, Z, {unweighted(goal)},
+                  prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator);
 }
 
 void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
@@ -444,7 +472,7 @@ void AdaptiveLoop::evaluate_goals(LoopRow &row, const Space<2> &primal,
     if (auto_weights)
     {
       const double d = lifted_goal(primal, goals[g], mesh, basis, U) - row.J_goal[g];
-      goals[g].weight = (d >= 0 ? 1. : -1.) / std::max(std::abs(row.J_goal[g]), 1e-12);
+      goals[g].weight = sign_weight(d, row.J_goal[g]);
     }
   }
   if (!estimate_weights)
