@@ -1,12 +1,20 @@
 // anisodwr command-line program: parse, run, report.
 #include "base/errors.h"
+#include "base/mpi.h"
 #include "config/parameters.h"
 #include "io/table.h"
 #include "study/dwr.h"
 #include "study/study.h"
 
+#include <deal.II/base/multithread_info.h>
+
+#include <dlfcn.h>
+
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <streambuf>
+#include <thread>
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
@@ -29,21 +37,41 @@ a run / DWR loop not started because its memory estimate exceeds adaptivity.max_
 Outputs (in output.directory): summary.json, convergence.csv (study.mode = convergence),
 solution.pvd + solution-NNNN.vtu (study.mode = single).
 )";
-/// The number of processes an MPI launcher started (OpenMPI, PMIx, MPICH/Hydra), and
-/// this one's rank; 1 and 0 without a launcher. Read from the launcher's environment, so
-/// that a serial run does not pay for MPI_Init.
-std::pair<long, long> launcher_ranks()
+/// The number of processes an MPI launcher started (OpenMPI, PMIx, MPICH/Hydra); 1
+/// without a launcher. Read from the launcher's environment, so that a serial run does
+/// not pay for MPI_Init.
+long launcher_ranks()
 {
-  const char *names[][2] = {{"OMPI_COMM_WORLD_SIZE", "OMPI_COMM_WORLD_RANK"},
-                            {"PMIX_SIZE", "PMIX_RANK"},
-                            {"PMI_SIZE", "PMI_RANK"}};
-  for (const auto &n : names)
-    if (const char *size = std::getenv(n[0]))
+  for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMIX_SIZE", "PMI_SIZE"})
+    if (const char *size = std::getenv(name))
+      return std::atol(size);
+  return 1;
+}
+
+/// Under mpirun with more than one process: MPI up, the cores shared out between the
+/// ranks of this machine (deal.II's threads in the estimator, OpenBLAS's under the
+/// direct solver), and only rank 0 prints.
+void start_mpi()
+{
+  if (launcher_ranks() <= 1)
+    return;
+  anisodwr::ensure_mpi();
+  const unsigned int cores = std::max(1u, std::thread::hardware_concurrency()),
+                     per_rank = std::max(1u, cores / anisodwr::mpi_ranks());
+  dealii::MultithreadInfo::set_thread_limit(per_rank);
+  // OpenBLAS (if it is the BLAS in use) reads its thread count at load time
+  if (auto set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+    set(int(per_rank));
+  if (anisodwr::mpi_rank() != 0)
+  {
+    struct Discard : std::streambuf
     {
-      const char *rank = std::getenv(n[1]);
-      return {std::atol(size), rank ? std::atol(rank) : 0};
-    }
-  return {1, 0};
+      int overflow(int c) override { return c == EOF ? 0 : c; }
+    };
+    static Discard discard;
+    std::cout.rdbuf(&discard);
+    std::cerr.rdbuf(&discard);
+  }
 }
 } // namespace
 
@@ -57,6 +85,7 @@ int main(int argc, char **argv)
   mallopt(M_MXFAST, 0);
 #endif
   using namespace anisodwr;
+  start_mpi();
   const std::vector<std::string> args(argv + 1, argv + argc);
   try
   {
@@ -74,16 +103,6 @@ int main(int argc, char **argv)
       throw InputError("unknown command '" + args[0] + "'; expected run, defaults or --help");
     if (args.size() < 2)
       throw InputError("run: missing CONFIG.json");
-    // Every rank would compute the same and write the same files: refuse, once.
-    if (const auto [ranks, rank] = launcher_ranks(); ranks > 1)
-    {
-      if (rank != 0)
-        return exit_input_error;
-      throw InputError("started by an MPI launcher with " + std::to_string(ranks) +
-                       " processes; anisodwr runs as one process (its slab solvers and "
-                       "the estimator use the machine's cores through threads): run it "
-                       "without mpirun, or with -np 1");
-    }
     std::vector<std::string> overrides;
     std::string output;
     for (std::size_t i = 2; i < args.size(); ++i)
@@ -100,7 +119,11 @@ int main(int argc, char **argv)
     }
     if (!output.empty())
       overrides.push_back("output.directory=" + output);
-    const Parameters prm = Parameters::read(args[1], overrides);
+    Parameters prm = Parameters::read(args[1], overrides);
+    // several ranks: MUMPS unless solver.direct was chosen (UMFPACK would factorize the
+    // same matrix on every rank)
+    if (mpi_ranks() > 1 && prm.source("solver.direct") == "default")
+      prm.solver.direct_solver = DirectEngine::mumps;
     lock_output_directory(prm.output.directory);
     if (prm.study.mode == StudyMode::dwr)
       run_dwr(prm);

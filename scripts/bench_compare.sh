@@ -5,7 +5,7 @@
 #   scripts/bench_compare.sh /tmp/old/build/app/anisodwr build/app/anisodwr config/hemker.json \
 #     --set adaptivity.loops=9
 # Prints, per phase (primal, adjoint, estimate) summed over the loops, A's and B's
-# seconds and A/B, and checks that both runs produced the same loops.csv numbers
+# seconds and A/B, and the peak memory (largest mem_peak over the loops, MB), and checks that both runs produced the same loops.csv numbers
 # (all columns except the times and memory figures: mem_peak, memory_estimate_mb,
 # lu_*_mb, which depend on the DoF numbering) to 1e-8 relative.
 # Env: REPEAT (default 1), OUT (default results/bench_compare).
@@ -42,4 +42,6 @@ print(f"{len(a)} loops, last N_tot = {a[-1]['N_tot']}; results identical: {same}
 print("| phase | A s | B s | A/B |\n|---|---|---|---|")
 for p in phases:
     print(f"| {p[2:]} | {best['A'][p]:.2f} | {best['B'][p]:.2f} | {best['A'][p] / best['B'][p]:.2f} |")
+peak = [max(float(x["mem_peak"]) for x in rows) for rows in (a, b)]
+print(f"| peak MB | {peak[0]:.0f} | {peak[1]:.0f} | {peak[0] / peak[1]:.2f} |")
 PY

@@ -29,18 +29,6 @@ expect 2 "goal.locations" -- run "$cfg" --set study.mode=dwr --set goal.kind=mea
 expect 2 "adaptivity.theta_h" -- run "$cfg" --set adaptivity.theta_h=1.5
 expect 2 "adaptivity.mode" -- run "$cfg" --set adaptivity.mode=random
 expect 0 "anisodwr run" -- --help
-# Under an MPI launcher with more than one process: one message (rank 0), exit 2 on
-# every rank, nothing computed; -np 1 runs as usual.
-OMPI_COMM_WORLD_SIZE=2 OMPI_COMM_WORLD_RANK=0 expect 2 "MPI launcher with 2 processes" \
-  -- run "$cfg" --output "$tmp/mpi"
-[ -e "$tmp/mpi/summary.json" ] && { echo "FAIL: a refused MPI run wrote summary.json"; fail=1; }
-rank1=$(OMPI_COMM_WORLD_SIZE=2 OMPI_COMM_WORLD_RANK=1 "$bin" run "$cfg" --output "$tmp/mpi" 2>&1)
-code=$?
-if [ "$code" != 2 ] || [ -n "$rank1" ]; then
-  echo "FAIL: rank 1 of 2: exit $code (expected 2), output '$rank1' (expected none)"
-  fail=1
-fi
-
 # Without an exact solution the convergence study prints no error columns (the CSV
 # leaves them empty): hemker, one level.
 expect 0 "level 0: N_space" -- run "$src/config/hemker.json" --output "$tmp/hk" \

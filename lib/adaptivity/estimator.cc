@@ -1,8 +1,11 @@
 #include "adaptivity/estimator.h"
 
+#include "base/mpi.h"
+
 #include "adaptivity/cell_kernel.h"
 #include "adaptivity/spatial_operators.h"
 #include "adaptivity/temporal_reconstruction.h"
+#include "base/mpi.h"
 #include "slab/adjoint_march.h"
 
 #include <deal.II/base/function.h>
@@ -376,6 +379,39 @@ double IndicatorAssembly<dim>::higher_order_errors(unsigned int n, double tau, b
 
 namespace
 {
+/// The sums over the MPI ranks of the per-chunk sums and of the cells' own indicators
+/// (each computed on one rank, zero on the others: the sums are exact).
+template <int dim>
+void allreduce_chunks(std::vector<Indicators<dim>> &sums, Indicators<dim> &ind)
+{
+  std::vector<double> buffer;
+  const auto pack = [&](auto &&visit)
+  {
+    for (auto &c : ind.eta_h_cell)
+      for (auto &e : c)
+        visit(e);
+    for (auto &e : ind.eta_tau_cell)
+      visit(e);
+    for (auto &s : sums)
+    {
+      for (auto &e : s.eta_tau_slab)
+        visit(e);
+      for (auto &e : s.eta_h)
+        visit(e);
+      for (double *e : {&s.eta_tau, &s.eta_tau_rho, &s.eta_tau_rhostar, &s.eta_h_rho,
+                        &s.eta_h_rhostar, &s.eta_h_supg})
+        visit(*e);
+      double no_lift = s.no_lift;
+      visit(no_lift);
+      s.no_lift = static_cast<unsigned int>(no_lift + 0.5);
+    }
+  };
+  pack([&](double &e) { buffer.push_back(e); });
+  allreduce_sum(buffer);
+  std::size_t i = 0;
+  pack([&](double &e) { e = buffer[i++]; });
+}
+
 /// Runs assembly.add_cell over all cells on MultithreadInfo::n_threads() threads and
 /// returns the per-chunk sums in chunk order (the cell's own indicators go to `ind`).
 template <int dim, class MakeAssembly>
@@ -398,6 +434,10 @@ std::vector<Indicators<dim>> add_cells_in_chunks(const DoFHandler<dim> &dofs,
   std::vector<Indicators<dim>> sums(n_chunks);
   for (auto &s : sums)
     s.eta_tau_slab.assign(n_slabs, 0.);
+  // Under MPI each rank takes every ranks-th chunk; the others stay zero, and the sum
+  // over the ranks (allreduce_chunks) restores every chunk and cell exactly.
+  const std::size_t ranks = mpi_ranks(), rank = mpi_rank(),
+                    n_mine = n_chunks > rank ? (n_chunks - rank + ranks - 1) / ranks : 0;
   std::atomic<std::size_t> next{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
@@ -406,19 +446,22 @@ std::vector<Indicators<dim>> add_cells_in_chunks(const DoFHandler<dim> &dofs,
     try
     {
       auto assembly = make_assembly();
-      for (std::size_t k = next++; k < n_chunks; k = next++)
+      for (std::size_t j = next++; j < n_mine; j = next++)
+      {
+        const std::size_t k = rank + j * ranks;
         for (std::size_t c = k * chunk; c < std::min(cells.size(), (k + 1) * chunk); ++c)
           assembly.add_cell(cells[c], ind, sums[k]);
+      }
     }
     catch (...)
     {
       const std::lock_guard<std::mutex> lock(failure_mutex);
       failure = std::current_exception();
-      next = n_chunks; // the other threads stop after their chunk
+      next = n_mine; // the other threads stop after their chunk
     }
   };
   const unsigned int n_threads =
-      std::min<std::size_t>(MultithreadInfo::n_threads(), n_chunks);
+      std::max<std::size_t>(1, std::min<std::size_t>(MultithreadInfo::n_threads(), n_mine));
   std::vector<std::thread> threads;
   for (unsigned int t = 1; t < n_threads; ++t)
     threads.emplace_back(work);
@@ -427,6 +470,8 @@ std::vector<Indicators<dim>> add_cells_in_chunks(const DoFHandler<dim> &dofs,
     t.join();
   if (failure)
     std::rethrow_exception(failure);
+  if (ranks > 1)
+    allreduce_chunks(sums, ind);
   return sums;
 }
 } // namespace

@@ -172,8 +172,13 @@ std::vector<Entry> solver_entries()
       {"solver", "reuse_factorization", "true", m(&S::reuse_factorization), boolean,
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
        "unchanged (same tau, coefficients constant in time)."},
+      {"solver", "direct", "umfpack", m(&S::direct_solver), by_name,
+       "Sparse direct solver of the slab systems (solver.type = direct or auto, and "
+       "the fallback): umfpack (SuiteSparse, one process) or mumps (MUMPS, on all MPI "
+       "ranks of the run; the factors are distributed over the ranks). Both factorize "
+       "once per slab matrix and reuse the factors; results agree to round-off."},
       {"solver", "refinement_steps", "0", m(&S::refinement_steps), integer(0, 10),
-       "Direct solves: UMFPACK's iterative refinement steps per solve (UMFPACK's own "
+       "Direct solves: iterative refinement steps per solve (UMFPACK's own "
        "default is 2). Each step costs a residual and a further solve; on the slab "
        "systems the solution changes only in the last digits (doc/results.md)."},
       {"solver", "auto_threshold", "1e6", m(&S::auto_threshold), real(0.),

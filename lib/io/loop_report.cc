@@ -1,5 +1,6 @@
 #include "io/loop_report.h"
 
+#include "base/mpi.h"
 #include "io/table.h"
 
 #include <fstream>
@@ -86,6 +87,8 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
 
 void write_loops_latex(const std::string &path, const std::vector<LoopRow> &rows)
 {
+  if (!writes_output())
+    return;
   std::ofstream f(path);
   f << "% written by anisodwr; one row per DWR loop\n"
     << "\\begin{tabular}{rrrrcccccccr}\n\\hline\n"
@@ -120,8 +123,8 @@ std::string summary_json(const SummaryContext &context, const std::vector<LoopRo
                          double wall, const std::string &details)
 {
   std::ostringstream f;
-  f << "{\n  \"status\": \"" << json_escape(status) << "\",\n  \"stop_reason\": \""
-    << json_escape(stop_reason) << "\",\n";
+  f << "{\n  \"status\": \"" << json_escape(status) << "\",\n  \"mpi_ranks\": "
+    << mpi_ranks() << ",\n  \"stop_reason\": \"" << json_escape(stop_reason) << "\",\n";
   if (!details.empty())
     f << "  \"details\": \"" << json_escape(details) << "\",\n";
   const auto &goals = context.goal_names;

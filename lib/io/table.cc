@@ -1,6 +1,7 @@
 #include "io/table.h"
 
 #include "base/errors.h"
+#include "base/mpi.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -20,13 +21,18 @@
 namespace anisodwr
 {
 CsvTable::CsvTable(const std::string &path, const std::vector<std::string> &columns)
-    : file(path), n_columns(columns.size()), out(path)
+    : file(path), n_columns(columns.size())
 {
-  if (!out)
-    throw InputError(path + ": cannot open for writing");
-  for (std::size_t c = 0; c < columns.size(); ++c)
-    out << (c ? "," : "") << columns[c];
-  out << "\n" << std::flush;
+  on_output_rank(
+      [&]()
+      {
+        out.open(path);
+        if (!out)
+          throw InputError(path + ": cannot open for writing");
+        for (std::size_t c = 0; c < columns.size(); ++c)
+          out << (c ? "," : "") << columns[c];
+        out << "\n" << std::flush;
+      });
 }
 
 void CsvTable::add_row(const std::vector<double> &values)
@@ -35,6 +41,8 @@ void CsvTable::add_row(const std::vector<double> &values)
     throw std::logic_error(file + ": row has " + std::to_string(values.size()) +
                            " values, table has " + std::to_string(n_columns) +
                            " columns");
+  if (!writes_output())
+    return;
   out << std::setprecision(8);
   for (std::size_t c = 0; c < values.size(); ++c)
   {
@@ -158,7 +166,20 @@ extern "C" void on_interrupt(int sig)
 }
 } // namespace
 
+namespace
+{
+void write_file_on_this_rank(const std::string &path, const std::string &content);
+void lock_output_directory_on_this_rank(const std::string &dir);
+} // namespace
+
 void write_file_atomically(const std::string &path, const std::string &content)
+{
+  on_output_rank([&]() { write_file_on_this_rank(path, content); });
+}
+
+namespace
+{
+void write_file_on_this_rank(const std::string &path, const std::string &content)
 {
   const SignalBlock block;
   const std::string tmp = path + ".tmp";
@@ -175,7 +196,7 @@ void write_file_atomically(const std::string &path, const std::string &content)
     throw InputError(path + ": cannot replace it by " + tmp + ": " + ec.message());
 }
 
-void lock_output_directory(const std::string &dir)
+void lock_output_directory_on_this_rank(const std::string &dir)
 {
   make_directory(dir);
   const std::string lock = dir + "/.anisodwr.lock";
@@ -217,9 +238,17 @@ void lock_output_directory(const std::string &dir)
       fs::remove(entry.path(), ec);
   }
 }
+} // namespace
+
+void lock_output_directory(const std::string &dir)
+{
+  on_output_rank([&]() { lock_output_directory_on_this_rank(dir); });
+}
 
 void set_interrupt_summary(const std::string &path, const std::string &content)
 {
+  if (!writes_output())
+    return;
   const SignalBlock block;
   static bool installed = false;
   if (!installed)

@@ -1,5 +1,7 @@
 #include "io/vtu.h"
 
+#include "base/mpi.h"
+
 #include <deal.II/base/function.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
@@ -48,6 +50,10 @@ std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t
                       const std::string &dir, const std::string &name, unsigned int index,
                       const CellData &cell_data)
 {
+  std::ostringstream file;
+  file << name << "-" << std::setw(4) << std::setfill('0') << index << ".vtu";
+  if (!writes_output())
+    return file.str();
   DataOut<dim> out;
   out.attach_dof_handler(space.dof_handler());
   out.add_data_vector(u, "u");
@@ -67,8 +73,6 @@ std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t
   out.build_patches(space.mapping(), space.degree());
   DataOutBase::VtkFlags flags(t, index);
   out.set_flags(flags);
-  std::ostringstream file;
-  file << name << "-" << std::setw(4) << std::setfill('0') << index << ".vtu";
   std::ofstream f(dir + "/" + file.str());
   out.write_vtu(f);
   write_cells_csv(space, u, cell_data,
@@ -79,6 +83,8 @@ std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t
 void write_pvd(const std::string &dir, const std::string &name,
                const std::vector<std::pair<double, std::string>> &records)
 {
+  if (!writes_output())
+    return;
   std::ofstream f(dir + "/" + name + ".pvd");
   DataOutBase::write_pvd_record(f, records);
 }

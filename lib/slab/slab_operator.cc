@@ -106,7 +106,7 @@ template <int dim>
 SlabOperator<dim>::SlabOperator(const Space<dim> &space, const TemporalBasis &basis,
                                 const SlabSolverOptions &options)
     : space(space), basis(basis), opt(options), reuse(options.reuse_factorization),
-      lu(options.refinement_steps)
+      lu(options.refinement_steps, options.direct_solver)
 {
 }
 
@@ -158,11 +158,12 @@ void SlabOperator<dim>::choose_solver(bool factorization_reused)
   const double peak = predicted_lu_mb(n, space.degree(), m),
                budget = auto_memory_budget_mb(opt);
   use_iterative = auto_picks_iterative(opt, n, m, space.degree(), factorization_reused);
-  const std::string memory = "predicted UMFPACK peak " +
+  const std::string engine = opt.direct_solver == DirectEngine::mumps ? "MUMPS" : "UMFPACK";
+  const std::string memory = "predicted " + engine + " peak " +
                              std::to_string(long(std::ceil(std::min(peak, 1e15)))) +
                              " MB, budget " + std::to_string(long(budget)) + " MB";
   if (!use_iterative)
-    choice = "UMFPACK (" + memory + ")";
+    choice = engine + " (" + memory + ")";
   else if (peak > budget)
     choice = "iterative (" + memory + ")";
   else

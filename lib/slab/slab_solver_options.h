@@ -1,6 +1,7 @@
 #pragma once
 // The slab solver choice (config section solver) without the solvers' types.
 #include "base/choice.h"
+#include "solver/direct_engine.h"
 #include "solver/iterative_options.h"
 
 #include <vector>
@@ -41,7 +42,9 @@ struct SlabSolverOptions
 {
   SolverType type = SolverType::direct;
   bool reuse_factorization = true;
-  /// UMFPACK's iterative refinement steps per direct solve
+  /// the sparse direct solver (direct solves, fallbacks)
+  DirectEngine direct_solver = DirectEngine::umfpack;
+  /// iterative refinement steps per direct solve
   unsigned int refinement_steps = 0;
   /// auto: UMFPACK while its predicted factorization peak (predicted_lu_mb) is at most
   /// auto_memory_mb (0: half the physical memory); with a factorization per slab

@@ -1,5 +1,7 @@
 #include "solver/direct_solver.h"
 
+#include "solver/mumps_solver.h"
+
 #include <umfpack.h>
 
 #include <algorithm>
@@ -29,7 +31,9 @@ double megabytes(const double *info, int entry)
 }
 } // namespace
 
-DirectSolver::DirectSolver(unsigned int refinement_steps)
+DirectSolver::DirectSolver(unsigned int refinement_steps, DirectEngine engine)
+    : mumps(engine == DirectEngine::mumps ? std::make_unique<MumpsSolver>(refinement_steps)
+                                          : nullptr)
 {
   static_assert(sizeof(control) / sizeof(double) == UMFPACK_CONTROL, "UMFPACK control size");
   umfpack_dl_defaults(control);
@@ -38,8 +42,15 @@ DirectSolver::DirectSolver(unsigned int refinement_steps)
 
 DirectSolver::~DirectSolver() { clear(); }
 
+bool DirectSolver::factorized() const
+{
+  return mumps ? mumps->factorized() : numeric != nullptr;
+}
+
 void DirectSolver::clear()
 {
+  if (mumps)
+    mumps->clear();
   if (numeric)
     umfpack_dl_free_numeric(&numeric);
   if (symbolic)
@@ -59,6 +70,11 @@ void DirectSolver::release_matrix()
 const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double> &A)
 {
   clear();
+  if (mumps)
+  {
+    mumps->analyze(A, figures);
+    return figures;
+  }
   const auto n = A.m();
   Ap.assign(n + 1, 0);
   Ai.resize(A.n_nonzero_elements());
@@ -93,6 +109,8 @@ const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double>
 
 void DirectSolver::factorize()
 {
+  if (mumps)
+    return mumps->factorize(figures);
   if (!symbolic || Ap.empty())
     throw std::logic_error("DirectSolver::factorize before analyze");
   if (numeric)
@@ -119,6 +137,8 @@ void DirectSolver::factorize(const dealii::SparseMatrix<double> &A)
 
 void DirectSolver::solve(dealii::Vector<double> &x, bool transpose) const
 {
+  if (mumps)
+    return mumps->solve(x, transpose);
   if (!numeric)
     throw std::logic_error("DirectSolver::solve before factorize");
   if (x.size() != n_rows)

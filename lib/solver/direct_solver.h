@@ -2,13 +2,18 @@
 // UMFPACK for a deal.II SparseMatrix, with the analysis split from the factorization
 // and UMFPACK's figures (memory peak, factor size) exposed: solver.type = auto
 // predicts the next factorization's peak from them (slab/slab_operator.h).
+#include "solver/direct_engine.h"
+
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <memory>
 #include <vector>
 
 namespace anisodwr
 {
+class MumpsSolver;
+
 /// UMFPACK's own figures for one matrix (MB).
 struct DirectSolverInfo
 {
@@ -19,15 +24,17 @@ struct DirectSolverInfo
   double peak_mb = 0, factor_mb = 0;
 };
 
-/// With 2 refinement steps (UMFPACK's default) the same arithmetic as
+/// UMFPACK: with 2 refinement steps (UMFPACK's default) the same arithmetic as
 /// dealii::SparseDirectUMFPACK (the matrix passed row-wise, so that UMFPACK factors
 /// A^T), hence identical solutions. Without refinement the solves do not read A, and
-/// its copy is freed after the factorization.
+/// its copy is freed after the factorization. MUMPS (engine mumps) behind the same
+/// calls; its figures are summed over the MPI ranks.
 class DirectSolver
 {
 public:
-  /// `refinement_steps`: UMFPACK's iterative refinement steps per solve (its default: 2)
-  explicit DirectSolver(unsigned int refinement_steps = 2);
+  /// `refinement_steps`: iterative refinement steps per solve (UMFPACK's default: 2)
+  explicit DirectSolver(unsigned int refinement_steps = 2,
+                        DirectEngine engine = DirectEngine::umfpack);
   ~DirectSolver();
   DirectSolver(const DirectSolver &) = delete;
   DirectSolver &operator=(const DirectSolver &) = delete;
@@ -40,7 +47,7 @@ public:
   /// x := A^{-1} x, or A^{-T} x.
   void solve(dealii::Vector<double> &x, bool transpose = false) const;
 
-  bool factorized() const { return numeric != nullptr; }
+  bool factorized() const;
   const DirectSolverInfo &info() const { return figures; }
   /// Frees the factors, the analysis and the figures.
   void clear();
@@ -52,6 +59,7 @@ private:
   double control[20];
   void *symbolic = nullptr, *numeric = nullptr;
   DirectSolverInfo figures;
+  std::unique_ptr<MumpsSolver> mumps; // engine mumps
   void release_matrix();
 };
 } // namespace anisodwr

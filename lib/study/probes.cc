@@ -1,5 +1,7 @@
 #include "study/probes.h"
 
+#include "base/mpi.h"
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
@@ -207,6 +209,8 @@ template <int dim>
 void write_line_csv(const std::string &path, const LineEvaluator<dim> &line,
                     unsigned int per_piece)
 {
+  if (!writes_output())
+    return;
   std::ofstream f(path);
   f << "s,x,y,u\n" << std::setprecision(10);
   const auto bp = line.breakpoints();

@@ -1,6 +1,7 @@
 #include "study/study.h"
 
 #include "base/errors.h"
+#include "base/mpi.h"
 #include "io/table.h"
 #include "io/vtu.h"
 #include "scene/scene.h"
@@ -134,7 +135,8 @@ std::string summary_text(const Parameters &prm, const std::vector<LevelResult> &
                          const std::string &stop_reason = "")
 {
   std::ostringstream f;
-  f << "{\n  \"status\": \"" << json_escape(status) << "\",\n";
+  f << "{\n  \"status\": \"" << json_escape(status) << "\",\n  \"mpi_ranks\": "
+    << mpi_ranks() << ",\n";
   if (!stop_reason.empty())
     f << "  \"stop_reason\": \"" << json_escape(stop_reason) << "\",\n";
   if (!details.empty())
