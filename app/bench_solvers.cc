@@ -3,7 +3,7 @@
 //   anisodwr_bench_solvers SYSTEM P R EPS REFINEMENTS SOLVER [SLABS]
 //     SYSTEM  primal | adjoint (transposed slab systems of the adjoint space)
 //     P       spatial degree of that system (primal Q1/Q2, adjoint Q2/Q4)
-//     SOLVER  direct | KRYLOV+PRECONDITIONER[@amg[-gs|-cheb]] (e.g. gmres+kronecker,
+//     SOLVER  direct | mumps | KRYLOV+PRECONDITIONER[@amg[-gs|-cheb]] (e.g. gmres+kronecker,
 //             gmres+kronecker_presb@amg: solver.spatial_preconditioner = amg with the
 //             ILU / Gauss-Seidel / Chebyshev smoother)
 //     SLABS   slabs marched (tau = 0.05 as in config/moving_hump.json), default 3
@@ -87,8 +87,13 @@ int main(int argc, char **argv)
 
   SlabSolverOptions o;
   std::string krylov = "-", prec = "-";
-  if (solver == "direct")
+  const bool direct = solver == "direct" || solver == "mumps";
+  if (direct)
+  {
     o.type = SolverType::direct;
+    if (solver == "mumps")
+      o.direct_solver = DirectEngine::mumps;
+  }
   else
   {
     const auto plus = solver.find('+');
@@ -178,11 +183,11 @@ int main(int argc, char **argv)
     message = std::to_string(t.n_fallbacks) + " of " + std::to_string(t.n_solves) +
               " solves fell back to UMFPACK";
   }
-  const double setup = solver == "direct" ? t.factorize : t.precondition;
+  const double setup = direct ? t.factorize : t.precondition;
   const unsigned int solves = std::max(1u, t.n_solves);
   std::cout << system << "," << p << "," << r << "," << eps << "," << refs << ","
             << space.n_dofs() << "," << op.n_slab_dofs() << "," << krylov << ","
-            << (solver == "direct" ? prec : solver.substr(solver.find('+') + 1))
+            << (direct ? prec : solver.substr(solver.find('+') + 1))
             << "," << status << "," << setup << "," << t.solve / solves << ","
             << (t.n_krylov_solves ? double(t.krylov_iterations) / t.n_krylov_solves : 0.)
             << "," << t.max_krylov_iterations << "," << peak_memory_mb() << "," << base

@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""Table and chart of scripts/bench_mpi.sh.
+
+Usage: mpi_table.py OUT [CHART.png]
+OUT holds one directory per config (hemker, moving_hump_paper, ...), each with one
+directory per variant (umfpack, umfpack_1thread, mumps, mpi2, ...) holding a run's
+loops.csv. Prints, per config, whether every variant has the serial run's N_space, N_t
+and J (1e-8 relative) on every loop, and a Markdown table of the last loop: phase
+times (s), the loop's sum, rank 0's peak memory (MB) and the speed-up against the
+serial default (umfpack). With CHART, draws the phase times as stacked bars.
+"""
+import csv
+import os
+import sys
+
+PHASES = ["t_primal", "t_adjoint", "t_estimate", "t_refine"]
+ORDER = ["umfpack_1thread", "umfpack", "mumps", "mpi2", "mpi4"]
+LABEL = {
+    "umfpack_1thread": "1 process, 1 thread, UMFPACK",
+    "umfpack": "1 process, 2 threads, UMFPACK",
+    "mumps": "1 process, 2 threads, MUMPS",
+    "mpi2": "2 ranks x 1 thread, MUMPS",
+    "mpi4": "4 ranks, MUMPS",
+}
+
+
+def load(path):
+    return list(csv.DictReader(open(path)))
+
+
+def main():
+    out = sys.argv[1]
+    chart = sys.argv[2] if len(sys.argv) > 2 else None
+    bars = []
+    for config in sorted(os.listdir(out)):
+        cdir = os.path.join(out, config)
+        runs = {v: load(os.path.join(cdir, v, "loops.csv")) for v in ORDER
+                if os.path.exists(os.path.join(cdir, v, "loops.csv"))}
+        if "umfpack" not in runs:
+            continue
+        ref = runs["umfpack"]
+        for v, rows in runs.items():
+            same = len(rows) == len(ref) and all(
+                x["N_space"] == y["N_space"] and x["N_t"] == y["N_t"]
+                and abs(float(x["J"]) - float(y["J"])) <= 1e-8 * max(1.0, abs(float(x["J"])))
+                for x, y in zip(ref, rows))
+            if v != "umfpack":
+                print(f"{config}, {v}: same N_space, N_t, J as umfpack on all {len(ref)} loops: {same}")
+        last = ref[-1]
+        print(f"\n{config}, loop {last['loop']}: N_space {last['N_space']}, N_t {last['N_t']}, "
+              f"N_tot {last['N_tot']}\n")
+        print("| variant | primal s | adjoint s | estimate s | refine s | loop s | peak MB (rank 0) | speed-up |")
+        print("|---|---|---|---|---|---|---|---|")
+        base = sum(float(last[p]) for p in PHASES)
+        for v in ORDER:
+            if v not in runs:
+                continue
+            row = runs[v][-1]
+            t = [float(row[p]) for p in PHASES]
+            print(f"| {LABEL[v]} | " + " | ".join(f"{x:.2f}" for x in t) +
+                  f" | {sum(t):.2f} | {float(row['mem_peak']):.0f} | {base / sum(t):.2f} |")
+            bars.append((f"{config}\n{v}", t))
+        print()
+    if chart and bars:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(1.1 * len(bars) + 2, 4))
+        bottom = [0.0] * len(bars)
+        for i, p in enumerate(PHASES):
+            h = [b[1][i] for b in bars]
+            ax.bar(range(len(bars)), h, bottom=bottom, label=p[2:])
+            bottom = [x + y for x, y in zip(bottom, h)]
+        ax.set_xticks(range(len(bars)))
+        ax.set_xticklabels([b[0] for b in bars], fontsize=7)
+        ax.set_ylabel("wall time of the last DWR loop [s]")
+        ax.set_title("Serial against 2 MPI ranks (2 cores)")
+        ax.legend(loc="upper left", fontsize=8, framealpha=0.9)
+        fig.tight_layout()
+        fig.savefig(chart, dpi=110)
+        print(f"chart: {chart}")
+
+
+main()

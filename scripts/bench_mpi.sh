@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Serial against MPI on this machine: one DWR run per variant, back to back,
+#   umfpack_1thread  1 process, DEAL_II_NUM_THREADS=1, UMFPACK
+#   umfpack          1 process, all cores (the serial default)
+#   mumps            1 process, all cores, solver.direct = mumps
+#   mpiN             mpirun -np N (MUMPS; cores shared out between the ranks)
+#   scripts/bench_mpi.sh CONFIG LOOPS [--set key=value ...]
+# then postprocess/mpi_table.py OUT: whether all variants reproduce the serial loops
+# (N_space, N_t, J), and the last loop's phase times, rank 0's peak memory and the
+# speed-up against the serial default. Env: OUT (default results/bench_mpi; a directory
+# per config below it), RANKS (default 2), CHART (a PNG path for the bar chart).
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+BIN=${BIN:-$ROOT/build/app/anisodwr}
+CONFIG=$1 LOOPS=$2
+shift 2
+BASE=${OUT:-results/bench_mpi}
+OUT=$BASE/$(basename "$CONFIG" .json)
+RANKS=${RANKS:-2}
+mkdir -p "$OUT"
+common=(run "$CONFIG" --set adaptivity.loops="$LOOPS" --set output.vtu_loops=0 "$@")
+DEAL_II_NUM_THREADS=1 "$BIN" "${common[@]}" --output "$OUT/umfpack_1thread" >/dev/null
+"$BIN" "${common[@]}" --output "$OUT/umfpack" >/dev/null
+"$BIN" "${common[@]}" --set solver.direct=mumps --output "$OUT/mumps" >/dev/null
+mpirun --allow-run-as-root --oversubscribe -np "$RANKS" "$BIN" "${common[@]}" \
+  --output "$OUT/mpi$RANKS" >/dev/null
+/usr/bin/python3 "$ROOT/postprocess/mpi_table.py" "$BASE" ${CHART:+"$CHART"}
