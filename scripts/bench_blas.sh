@@ -21,7 +21,7 @@ run() { # NAME CONFIG ARGS...
     "$@" >"$OUT/${name}_open.log"
 }
 run hemker hemker.json --set adaptivity.loops=17
-run hump moving_hump.json --set adaptivity.loops=14
+run hump moving_hump_p1.json --set adaptivity.loops=14
 /usr/bin/python3 - "$OUT" <<'PY'
 import csv, sys
 out = sys.argv[1]

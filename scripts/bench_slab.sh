@@ -15,7 +15,7 @@ for pair in $SIZES; do
   refs=${pair##*:}
   for reuse in true false; do
     dir="$OUT/r${r}_ref${refs}_reuse_${reuse}"
-    "$BUILD/app/anisodwr" run "$ROOT/config/moving_hump.json" --output "$dir" \
+    "$BUILD/app/anisodwr" run "$ROOT/config/moving_hump_p1.json" --output "$dir" \
       --set discretization.r="$r" --set discretization.initial_refinements="$refs" \
       --set solver.reuse_factorization="$reuse" --set output.vtu_every=0 \
       --set output.progress=false >/dev/null

@@ -4,7 +4,7 @@
 # exit code 2 with a one-line message (estimate, limit, loop), summary.json status
 # "stopped", the finished loops' rows on disk; loops.csv records memory_estimate_mb.
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
-cfg=$src/config/moving_hump.json
+cfg=$src/config/moving_hump_p1.json
 expect_timeout=60
 # 1089 DoFs on loop 1, about 1.6 times as many on loop 2: estimates well apart
 # (dG(1) pinned: the messages below name it)
