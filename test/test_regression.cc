@@ -3,6 +3,8 @@
 //  - moving_hump_paper, first 6 DWR loops: N_space and N_t exactly; J error, eta_h,x,
 //    eta_h,y, eta_tau, I_eff to 1e-6 relative (+1e-12 absolute) against
 //    test/reference/moving_hump_paper.csv (regenerate: ANISODWR_WRITE_REFERENCE=1);
+//  - moving_hump (the default config), first 8 loops: the same, plus the goals' errors
+//    (test/reference/moving_hump.csv);
 //  - hemker, first 3 loops: N_space (196 at loop 1) and N_t exactly; J_1, J_2, eta
 //  values,
 //    layer width, over-/undershoot to 1e-6 relative (test/reference/hemker.csv); the
@@ -124,6 +126,20 @@ TEST(Regression, MovingHumpPaperFirstSixLoops)
   ASSERT_EQ(got.size(), 6u);
   check_reference(got, "moving_hump_paper", {"N_space", "N_t"},
                   {"J_error", "eta_hx", "eta_hy", "eta_tau", "I_eff"});
+}
+
+TEST(Regression, MovingHumpDefaultFirstEightLoops)
+{
+  // config/moving_hump.json (Q2 primal, Q3 adjoint, dG(2), estimate weights, the dG(3)
+  // temporal indicator): loops 1-8, up to N_tot 1.4e5
+  const std::string dir = "regression_moving_hump";
+  ASSERT_EQ(run("moving_hump.json", dir, "--set adaptivity.loops=8 --set output.vtu_loops=0"),
+            0);
+  const Table got = read_csv(dir + "/loops.csv");
+  ASSERT_EQ(got.size(), 8u);
+  check_reference(got, "moving_hump", {"N_space", "N_t"},
+                  {"J_error", "eta_hx", "eta_hy", "eta_tau", "I_eff", "err_u_xe1_T",
+                   "err_u_xe2_T"});
 }
 
 TEST(Regression, HemkerFirstThreeLoops)
