@@ -57,7 +57,7 @@ void start_mpi()
     return;
   anisodwr::ensure_mpi();
   const unsigned int cores = std::max(1u, std::thread::hardware_concurrency()),
-                     per_rank = std::max(1u, cores / anisodwr::mpi_ranks());
+                     per_rank = std::max(1u, cores / anisodwr::mpi_ranks_on_this_machine());
   dealii::MultithreadInfo::set_thread_limit(per_rank);
   // OpenBLAS (if it is the BLAS in use) reads its thread count at load time
   if (auto set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))

@@ -45,6 +45,18 @@ unsigned int mpi_rank()
   return unsigned(r);
 }
 
+unsigned int mpi_ranks_on_this_machine()
+{
+  if (!mpi_active())
+    return 1;
+  MPI_Comm local;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+  int n = 1;
+  MPI_Comm_size(local, &n);
+  MPI_Comm_free(&local);
+  return unsigned(n);
+}
+
 void ensure_mpi()
 {
   int initialized = 0;

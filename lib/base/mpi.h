@@ -13,6 +13,8 @@ namespace anisodwr
 /// not initialized).
 unsigned int mpi_ranks();
 unsigned int mpi_rank();
+/// The number of ranks on this machine (shared memory; 1 while MPI is not initialized).
+unsigned int mpi_ranks_on_this_machine();
 /// True on the rank that writes output (rank 0).
 inline bool writes_output() { return mpi_rank() == 0; }
 /// Initializes MPI (MPI_Init; MPI_Finalize at exit) unless it already is.
