@@ -50,4 +50,33 @@ expect_bad() {
 expect_bad --set solver.type=cg
 expect_bad --set solver.preconditioner=amg2
 expect_bad --set solver.fallback=maybe
+expect_bad --set solver.direct=pardiso
+
+# output.dump_slab_loop: loop 2's first primal and adjoint slab matrices in Matrix
+# Market format, of the slab's size (N_space (r+1) for the primal), with as many
+# entries as the header says, in range; no other loop's. Also on the Krylov path.
+for type in direct iterative; do
+  d=$tmp/dump_$type
+  "$bin" run "$src/config/hemker.json" --output "$d" --set adaptivity.loops=3 \
+    --set output.dump_slab_loop=2 --set solver.type=$type >/dev/null 2>&1 || { echo "FAIL: dump run ($type)"; fail=1; }
+  n2=$(awk -F, 'NR == 3 {print $2}' "$d/loops.csv") # loop 2's N_space (dG(0): one temporal DoF)
+  /usr/bin/python3 - "$d" "$n2" <<'PY' || fail=1
+import os, sys
+d, n_space = sys.argv[1], int(sys.argv[2])
+files = sorted(f for f in os.listdir(d) if f.endswith(".mtx"))
+assert files == ["slab-adjoint-loop-0002.mtx", "slab-primal-loop-0002.mtx"], files
+for f in files:
+    lines = open(os.path.join(d, f)).read().splitlines()
+    assert lines[0] == "%%MatrixMarket matrix coordinate real general", lines[0]
+    body = [l for l in lines if not l.startswith("%")]
+    m, n, nnz = map(int, body[0].split())
+    assert m == n and len(body) - 1 == nnz, (f, m, n, nnz, len(body))
+    assert all(1 <= int(i) <= m and 1 <= int(j) <= n for i, j, _ in (l.split() for l in body[1:]))
+    if "primal" in f:
+        assert m == n_space, (m, n_space)
+    else:
+        assert m > n_space, (m, n_space)  # the Q2 adjoint
+print(f"ok: slab matrices of loop 2 dumped: {files}")
+PY
+done
 exit $fail

@@ -153,6 +153,7 @@ struct OutputSection
   unsigned int vtu_every = 1;
   bool progress = true;
   unsigned int vtu_loops = 1;
+  unsigned int dump_slab_loop = 0;
 };
 
 struct Parameters

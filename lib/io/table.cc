@@ -233,7 +233,8 @@ void lock_output_directory_on_this_rank(const std::string &dir)
         name == "convergence.csv" || name == "solution.pvd" ||
         ((starts(name, "loop-") || starts(name, "solution-")) &&
          (ends(name, ".vtu") || ends(name, ".cells.csv"))) ||
-        (starts(name, "cut_") && ends(name, ".csv"));
+        (starts(name, "cut_") && ends(name, ".csv")) ||
+        (starts(name, "slab-") && ends(name, ".mtx"));
     if (ours)
       fs::remove(entry.path(), ec);
   }

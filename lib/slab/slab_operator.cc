@@ -1,10 +1,14 @@
 #include "slab/slab_operator.h"
 
+#include "base/errors.h"
+#include "base/mpi.h"
+
 #include <deal.II/base/timer.h>
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <fstream>
 #include <cmath>
 #include <map>
 
@@ -100,6 +104,23 @@ bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsign
   return options.type == SolverType::iterative ||
          (options.type == SolverType::automatic &&
           auto_picks_iterative(options, n_space * m, m, degree, factorization_reused));
+}
+
+void write_matrix_market(const SparseMatrix<double> &A, const std::string &path)
+{
+  if (!writes_output())
+    return;
+  std::ofstream f(path);
+  f << "%%MatrixMarket matrix coordinate real general\n"
+    << "% anisodwr slab matrix K_n (Dirichlet and hanging-node rows condensed); the adjoint "
+       "solves with its transpose\n"
+    << A.m() << " " << A.n() << " " << A.n_nonzero_elements() << "\n";
+  f.precision(17);
+  for (types::global_dof_index i = 0; i < A.m(); ++i)
+    for (auto e = A.begin(i); e != A.end(i); ++e)
+      f << i + 1 << " " << e->column() + 1 << " " << e->value() << "\n";
+  if (!f)
+    throw InputError(path + ": cannot write the slab matrix");
 }
 
 template <int dim>
@@ -253,8 +274,14 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     choose_solver(constant && reuse);
   else
     use_iterative = opt.type == SolverType::iterative;
-  if (!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative))
+  if (!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative) ||
+      !opt.dump_matrix.empty())
     assemble_matrix();
+  if (!opt.dump_matrix.empty())
+  {
+    write_matrix_market(K, opt.dump_matrix);
+    opt.dump_matrix.clear(); // the first slab only
+  }
   if (!use_iterative)
     // UMFPACK without iterative refinement reads neither K nor its copy of K in the
     // solves, and a reused factorization needs no condensed matrices until the slab

@@ -45,6 +45,10 @@ const SolverTotals &solver_totals();
 /// `"solver_fallbacks": n, "krylov": {...}` (JSON members, no braces).
 std::string solver_totals_json();
 
+/// Writes A to `path` in Matrix Market coordinate format (1-based, all stored entries;
+/// rank 0 only). InputError if the file cannot be written.
+void write_matrix_market(const dealii::SparseMatrix<double> &A, const std::string &path);
+
 /// Physical memory of the machine, MB (8192 if the system does not say).
 double physical_memory_mb();
 

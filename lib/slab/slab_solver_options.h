@@ -4,6 +4,7 @@
 #include "solver/direct_engine.h"
 #include "solver/iterative_options.h"
 
+#include <string>
 #include <vector>
 
 namespace anisodwr
@@ -54,6 +55,9 @@ struct SlabSolverOptions
   double auto_memory_mb = 0.;
   Fallback fallback = Fallback::direct;
   IterativeOptions iterative;
+  /// If not empty: the first slab matrix this operator prepares is written to this path
+  /// in Matrix Market format (output.dump_slab_loop)
+  std::string dump_matrix;
 
   static SlabSolverOptions direct(bool reuse)
   {

@@ -19,8 +19,10 @@
 #include <deal.II/grid/tria.h>
 
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <tuple>
 
 namespace anisodwr
@@ -116,6 +118,9 @@ private:
   /// The loop's solves, goal values and indicators on the current meshes (ind), and its
   /// outputs (probes, cut lines, VTU). False if the DoF budget stops the run first.
   bool solve_and_estimate(LoopRow &row, Indicators<2> &ind);
+  /// The slab solver options, with the dump of the first slab matrix to
+  /// slab-<problem>-loop-NNNN.mtx in loop output.dump_slab_loop.
+  SlabSolverOptions dumping_solver_options(unsigned int loop, const std::string &problem) const;
   /// The loop's memory estimate, checked against the limit (ResourceLimitError).
   void check_loop_memory(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint);
   /// J_i(u_tau h), the weights (auto: from the patch lift) and the weighted J (not yet
@@ -311,7 +316,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   std::vector<Vector<double>> U;
   {
     // (the primal's factors are freed before the adjoint factorizes)
-    SlabOperator<2> op(primal, basis, slab_solver_options(prm));
+    SlabOperator<2> op(primal, basis, dumping_solver_options(row.loop, "primal"));
     U = march_primal(primal, mesh, basis, op, opt);
     report_auto_choice(row.loop, 0, op);
     row.lu_primal_mb = op.timings().factor_mb;
@@ -346,12 +351,27 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   return true;
 }
 
+SlabSolverOptions AdaptiveLoop::dumping_solver_options(unsigned int loop,
+                                                       const std::string &problem) const
+{
+  SlabSolverOptions o = slab_solver_options(prm);
+  if (loop == prm.output.dump_slab_loop)
+  {
+    std::ostringstream name;
+    name << prm.output.directory << "/slab-" << problem << "-loop-" << std::setw(4)
+         << std::setfill('0') << loop << ".mtx";
+    o.dump_matrix = name.str();
+  }
+  return o;
+}
+
 void AdaptiveLoop::adjoint_and_estimate(LoopRow &row, Indicators<2> &ind,
                                         const Space<2> &primal, const Space<2> &adjoint,
                                         const std::vector<Vector<double>> &U,
                                         const HigherOrderPrimal *hi, const MarchOptions &opt)
 {
-  auto opq = std::make_unique<SlabOperator<2>>(adjoint, basis, slab_solver_options(prm));
+  auto opq = std::make_unique<SlabOperator<2>>(adjoint, basis,
+                                               dumping_solver_options(row.loop, "adjoint"));
   if (estimate_weights)
   {
     estimate_by_goal(row, ind, primal, adjoint, opq, U, hi, opt);
