@@ -90,6 +90,13 @@ void on_output_rank(const std::function<void()> &write)
     throw InputError("writing the output failed on rank 0");
 }
 
+double mpi_max(double x)
+{
+  if (mpi_ranks() > 1)
+    MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return x;
+}
+
 void allreduce_sum(std::vector<double> &x)
 {
   if (mpi_ranks() == 1)

@@ -22,6 +22,9 @@ void ensure_mpi();
 /// Runs `write` on the output rank only; every rank then throws what it threw (an
 /// InputError on the other ranks), so that all ranks stop together. Collective.
 void on_output_rank(const std::function<void()> &write);
+/// The largest x over all ranks (x on one rank). Collective: decisions taken from
+/// measured times or memory must be the same on every rank.
+double mpi_max(double x);
 /// x := the element-wise sum of x over all ranks (nothing on one rank). Collective.
 void allreduce_sum(std::vector<double> &x);
 } // namespace anisodwr

@@ -7,6 +7,7 @@
 #include "adaptivity/lifted_goal.h"
 #include "adaptivity/refinement.h"
 #include "base/errors.h"
+#include "base/mpi.h"
 #include "goal/goal.h"
 #include "io/loop_report.h"
 #include "io/table.h"
@@ -235,7 +236,7 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
   probe_table = std::make_unique<CsvTable>(prm.output.directory + "/probes.csv",
                                            probe_columns(goals));
   probe_spec = scene->probes();
-  base_mb = resident_memory_mb();
+  base_mb = mpi_max(resident_memory_mb());
   mem_limit = memory_limit(prm);
   wall.restart();
 }
@@ -269,7 +270,7 @@ void AdaptiveLoop::run()
         mesh = refine_time(mesh, ind.eta_tau_slab, prm.adaptivity.theta_tau);
         row.t_refine = t.wall_time();
       }
-      row.mem = peak_memory_mb();
+      row.mem = mpi_max(peak_memory_mb()); // the same decisions on every rank
       mem_ratio = std::max(1., row.mem / row.mem_estimate);
       record(row);
       if (stop)
@@ -557,7 +558,7 @@ bool AdaptiveLoop::stop_after(const LoopRow &row)
     return true;
   }
   if (prm.adaptivity.max_wall_time > 0 &&
-      wall.wall_time() + 2. * (row.t_primal + row.t_adjoint + row.t_estimate) >
+      mpi_max(wall.wall_time() + 2. * (row.t_primal + row.t_adjoint + row.t_estimate)) >
           prm.adaptivity.max_wall_time)
   {
     stop_reason = "wall-time budget";

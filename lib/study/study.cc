@@ -167,7 +167,7 @@ void run_study(const Parameters &prm)
   make_directory(prm.output.directory);
   const auto scene = create_scene<2>(prm);
   Timer timer;
-  const double base_mb = resident_memory_mb();
+  const double base_mb = mpi_max(resident_memory_mb());
   const MemoryLimit limit = memory_limit(prm);
   std::vector<LevelResult> levels;
   write_summary(prm, levels, "running", 0.);
