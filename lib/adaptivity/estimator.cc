@@ -1,7 +1,5 @@
 #include "adaptivity/estimator.h"
 
-#include "base/mpi.h"
-
 #include "adaptivity/cell_kernel.h"
 #include "adaptivity/spatial_operators.h"
 #include "adaptivity/temporal_reconstruction.h"

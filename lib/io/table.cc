@@ -164,21 +164,7 @@ extern "C" void on_interrupt(int sig)
   write_all(2, msg, sizeof msg - 1);
   _exit(128 + sig);
 }
-} // namespace
 
-namespace
-{
-void write_file_on_this_rank(const std::string &path, const std::string &content);
-void lock_output_directory_on_this_rank(const std::string &dir);
-} // namespace
-
-void write_file_atomically(const std::string &path, const std::string &content)
-{
-  on_output_rank([&]() { write_file_on_this_rank(path, content); });
-}
-
-namespace
-{
 void write_file_on_this_rank(const std::string &path, const std::string &content)
 {
   const SignalBlock block;
@@ -240,6 +226,11 @@ void lock_output_directory_on_this_rank(const std::string &dir)
   }
 }
 } // namespace
+
+void write_file_atomically(const std::string &path, const std::string &content)
+{
+  on_output_rank([&]() { write_file_on_this_rank(path, content); });
+}
 
 void lock_output_directory(const std::string &dir)
 {

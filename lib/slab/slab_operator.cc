@@ -8,8 +8,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <fstream>
 #include <cmath>
+#include <fstream>
 #include <map>
 
 namespace anisodwr
@@ -108,19 +108,21 @@ bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsign
 
 void write_matrix_market(const SparseMatrix<double> &A, const std::string &path)
 {
-  if (!writes_output())
-    return;
-  std::ofstream f(path);
-  f << "%%MatrixMarket matrix coordinate real general\n"
-    << "% anisodwr slab matrix K_n (Dirichlet and hanging-node rows condensed); the adjoint "
-       "solves with its transpose\n"
-    << A.m() << " " << A.n() << " " << A.n_nonzero_elements() << "\n";
-  f.precision(17);
-  for (types::global_dof_index i = 0; i < A.m(); ++i)
-    for (auto e = A.begin(i); e != A.end(i); ++e)
-      f << i + 1 << " " << e->column() + 1 << " " << e->value() << "\n";
-  if (!f)
-    throw InputError(path + ": cannot write the slab matrix");
+  on_output_rank(
+      [&]()
+      {
+        std::ofstream f(path);
+        f << "%%MatrixMarket matrix coordinate real general\n"
+          << "% anisodwr slab matrix K_n (Dirichlet and hanging-node rows condensed); the "
+             "adjoint solves with its transpose\n"
+          << A.m() << " " << A.n() << " " << A.n_nonzero_elements() << "\n";
+        f.precision(17);
+        for (types::global_dof_index i = 0; i < A.m(); ++i)
+          for (auto e = A.begin(i); e != A.end(i); ++e)
+            f << i + 1 << " " << e->column() + 1 << " " << e->value() << "\n";
+        if (!f)
+          throw InputError(path + ": cannot write the slab matrix");
+      });
 }
 
 template <int dim>

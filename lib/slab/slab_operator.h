@@ -46,7 +46,7 @@ const SolverTotals &solver_totals();
 std::string solver_totals_json();
 
 /// Writes A to `path` in Matrix Market coordinate format (1-based, all stored entries;
-/// rank 0 only). InputError if the file cannot be written.
+/// rank 0 writes, all ranks throw an InputError if it cannot). Collective.
 void write_matrix_market(const dealii::SparseMatrix<double> &A, const std::string &path);
 
 /// Physical memory of the machine, MB (8192 if the system does not say).

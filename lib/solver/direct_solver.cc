@@ -70,6 +70,7 @@ void DirectSolver::release_matrix()
 const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double> &A)
 {
   clear();
+  n_rows = A.m();
   if (mumps)
   {
     mumps->analyze(A, figures);
@@ -123,7 +124,6 @@ void DirectSolver::factorize()
   check("umfpack_dl_numeric", status, Ap.size() - 1, Ax.size());
   figures.peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY);
   figures.factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE);
-  n_rows = Ap.size() - 1;
   // Without iterative refinement the solves do not read A: its copy can go.
   if (control[UMFPACK_IRSTEP] == 0)
     release_matrix();
@@ -137,14 +137,14 @@ void DirectSolver::factorize(const dealii::SparseMatrix<double> &A)
 
 void DirectSolver::solve(dealii::Vector<double> &x, bool transpose) const
 {
-  if (mumps)
-    return mumps->solve(x, transpose);
-  if (!numeric)
+  if (!factorized())
     throw std::logic_error("DirectSolver::solve before factorize");
   if (x.size() != n_rows)
     throw std::invalid_argument("DirectSolver::solve: vector of size " +
                                 std::to_string(x.size()) + ", matrix of " +
                                 std::to_string(n_rows) + " rows");
+  if (mumps)
+    return mumps->solve(x, transpose);
   const dealii::Vector<double> b(x);
   check("umfpack_dl_solve",
         umfpack_dl_solve(transpose ? UMFPACK_A : UMFPACK_At, Ap.data(), Ai.data(), Ax.data(),

@@ -91,7 +91,6 @@ void MumpsSolver::clear()
   }
   mumps.reset();
   have_factors = false;
-  n_rows = 0;
 }
 
 void MumpsSolver::analyze(const dealii::SparseMatrix<double> &A, DirectSolverInfo &info)
@@ -113,8 +112,7 @@ void MumpsSolver::analyze(const dealii::SparseMatrix<double> &A, DirectSolverInf
   icntl(id, 18) = 3; // each rank gives its own entries
   icntl(id, 10) = -int(refinement_steps);
   // this rank's contiguous block of rows
-  n_rows = A.m();
-  const std::size_t ranks = mpi_ranks(), rank = mpi_rank(),
+  const std::size_t n_rows = A.m(), ranks = mpi_ranks(), rank = mpi_rank(),
                     i0 = n_rows * rank / ranks, i1 = n_rows * (rank + 1) / ranks;
   std::size_t nnz = 0;
   for (std::size_t i = i0; i < i1; ++i)
@@ -162,18 +160,12 @@ void MumpsSolver::factorize(DirectSolverInfo &info)
 
 void MumpsSolver::solve(dealii::Vector<double> &x, bool transpose) const
 {
-  if (!have_factors)
-    throw std::logic_error("MumpsSolver::solve before factorize");
-  if (x.size() != n_rows)
-    throw std::invalid_argument("MumpsSolver::solve: vector of size " +
-                                std::to_string(x.size()) + ", matrix of " +
-                                std::to_string(n_rows) + " rows");
   auto &id = mumps->id;
   icntl(id, 9) = transpose ? 0 : 1; // 1: A x = b, otherwise A^T x = b
   icntl(id, 20) = 0;                // dense right-hand side on the host
   icntl(id, 21) = 0;                // solution on the host, in place
   id.nrhs = 1;
-  id.lrhs = MUMPS_INT(n_rows);
+  id.lrhs = id.n;
   id.rhs = mpi_rank() == 0 ? x.begin() : nullptr;
   mumps->run(3);
   if (mpi_ranks() > 1)

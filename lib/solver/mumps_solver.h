@@ -31,7 +31,8 @@ public:
   /// Without refinement steps the copy of A is freed afterwards. Collective.
   void factorize(DirectSolverInfo &info);
   /// x := A^{-1} x, or A^{-T} x; x is the same on every rank before and after.
-  /// Collective.
+  /// Collective. Used through DirectSolver::solve, which checks that the factors exist
+  /// and the size of x.
   void solve(dealii::Vector<double> &x, bool transpose) const;
   bool factorized() const { return have_factors; }
   void clear();
@@ -40,7 +41,6 @@ private:
   struct Instance;
   std::unique_ptr<Instance> mumps;
   unsigned int refinement_steps;
-  std::size_t n_rows = 0;
   bool have_factors = false;
 };
 } // namespace anisodwr
