@@ -27,3 +27,29 @@ expect() {
     echo "ok: anisodwr $* -> $rc: $(head -c 160 <<<"$out")"
   fi
 }
+
+# same_loops A.csv B.csv TOL: two loops.csv agree: the same loops, N_space, N_t, N_tot
+# equal, every other column (J, errors, estimates, ...) within TOL relative; times,
+# memory figures and the concurrent flag are not compared. Prints the first differences.
+same_loops() {
+  /usr/bin/python3 - "$1" "$2" "$3" <<'PY'
+import csv, sys
+a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+bad = []
+if len(a) != len(b):
+    bad.append(f"{len(a)} loops against {len(b)}")
+for x, y in zip(a, b):
+    for k in x:
+        if k.startswith("t_") or k in ("mem_peak", "memory_estimate_mb", "concurrent") or k.startswith("lu_"):
+            continue
+        if (x[k] == "") != (y[k] == ""):
+            bad.append(f"loop {x['loop']} {k}: '{x[k]}' vs '{y[k]}'")
+        elif x[k] != "":
+            u, v = float(x[k]), float(y[k])
+            exact = k in ("loop", "N_space", "N_t", "N_tot")
+            if abs(u - v) > (0 if exact else float(sys.argv[3]) * abs(u)):
+                bad.append(f"loop {x['loop']} {k}: {u} vs {v}")
+print("\n".join(bad[:10]) if bad else f"{len(a)} loops identical")
+sys.exit(1 if bad else 0)
+PY
+}

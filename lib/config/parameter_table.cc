@@ -354,6 +354,13 @@ std::vector<Entry> adaptivity_entries()
        "Also solve one adjoint per goal and report each goal's own eta_tau h and I_eff "
        "(loops.csv: eta_<goal>, I_eff_<goal>), so that cancellation between goals in the "
        "combined estimate is visible; costs one adjoint solve and estimate per goal."},
+      {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
+       "March the adjoint(s) in a second thread while the primal marches, when the "
+       "adjoint does not depend on the primal (goal.weights is not auto), one MPI rank "
+       "and more than one thread run, both slab systems are predicted to go to UMFPACK, "
+       "and the loop's memory estimate with both factorizations held at once fits the "
+       "memory limit; otherwise (and with false) the primal, then the adjoint. The "
+       "results are the same either way; t_primal and t_adjoint then overlap."},
       {"adaptivity", "measure_time_error", "false", m(&S::measure_time_error), boolean,
        "Diagnostic: on every loop solve the primal again with the slabs bisected once "
        "and twice and report the extrapolated temporal goal error on the loop's spatial "

@@ -141,6 +141,7 @@ struct AdaptivitySection
   TimeIndicator time_indicator = TimeIndicator::average;
   bool per_goal_estimates = false;
   bool measure_time_error = false;
+  bool concurrent_marches = true;
   unsigned int adjoint_degree = 0;
   SpaceIndicator space_indicator = SpaceIndicator::average;
   AdjointStabilization adjoint_stabilization = AdjointStabilization::transposed;

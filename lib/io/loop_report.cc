@@ -58,7 +58,7 @@ std::vector<double> LoopRow::all_values() const
   v.insert(v.end(), {eta_tau_rho, eta_tau_rhostar, err_tau, err_tau_order,
                      double(marking[0]), double(marking[1]), double(marking[2]),
                      double(marking[3]), double(marking[4]), mem_estimate, eta_h_rho,
-                     eta_h_rhostar, eta_h_supg, no_lift, lu_primal_mb, lu_adjoint_mb});
+                     eta_h_rhostar, eta_h_supg, no_lift, lu_primal_mb, lu_adjoint_mb, concurrent});
   return v;
 }
 
@@ -70,7 +70,8 @@ std::vector<double> LoopRow::all_values() const
 /// both, and flagged or extended by the closure; the loop's memory estimate; last the
 /// parts of eta_h (1/2 rho(u)(z - R_i z), the adjoint half, S(u)(R_h z), summed over
 /// directions), the number of (cell, direction) pairs without a lift and the UMFPACK
-/// factor sizes of the primal and adjoint slab matrices (MB).
+/// factor sizes of the primal and adjoint slab matrices (MB), and whether the primal and
+/// the adjoint marched concurrently (1/0).
 std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names)
 {
   auto c = columns;
@@ -81,7 +82,7 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
            {"eta_tau_rho", "eta_tau_rhostar", "err_tau", "err_tau_order", "marked",
             "marked_x", "marked_y", "marked_xy", "closure", "memory_estimate_mb",
             "eta_h_rho", "eta_h_rhostar", "eta_h_supg", "no_lift", "lu_primal_mb",
-            "lu_adjoint_mb"});
+            "lu_adjoint_mb", "concurrent"});
   return c;
 }
 

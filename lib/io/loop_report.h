@@ -35,6 +35,8 @@ struct LoopRow
   /// UMFPACK's factor size (MB) of the primal and the adjoint slab matrix (0: solved
   /// iteratively; the largest if several factorizations)
   double lu_primal_mb = 0, lu_adjoint_mb = 0;
+  /// 1 if the primal and the adjoint marched concurrently (adaptivity.concurrent_marches)
+  double concurrent = 0;
   /// adaptivity.per_goal_estimates: eta_tau h of each goal from its own adjoint
   std::vector<double> eta_goal;
   /// the cells of the refinement that follows this loop (zeros on the last): marked,

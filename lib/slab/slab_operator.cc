@@ -11,6 +11,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <mutex>
 
 namespace anisodwr
 {
@@ -40,9 +41,10 @@ std::string solver_totals_json()
 
 namespace
 {
-/// The last UMFPACK factorization measured per (degree, m) in this process (not
-/// thread-safe): unknowns and peak (MB).
+/// The last UMFPACK factorization measured per (degree, m) in this process: unknowns and
+/// peak (MB); the primal and the adjoint may march in two threads.
 std::map<std::pair<unsigned int, unsigned int>, std::pair<double, double>> lu_records;
+std::mutex lu_records_mutex;
 } // namespace
 
 double fitted_lu_mb(double n, unsigned int degree, unsigned int m)
@@ -57,6 +59,7 @@ double fitted_lu_mb(double n, unsigned int degree, unsigned int m)
 
 double predicted_lu_mb(double n, unsigned int degree, unsigned int m)
 {
+  const std::lock_guard<std::mutex> lock(lu_records_mutex);
   const auto record = lu_records.find({degree, m});
   if (record != lu_records.end())
   {
@@ -70,10 +73,15 @@ double predicted_lu_mb(double n, unsigned int degree, unsigned int m)
 
 void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb)
 {
+  const std::lock_guard<std::mutex> lock(lu_records_mutex);
   lu_records[{degree, m}] = {n, peak_mb};
 }
 
-void reset_lu_records() { lu_records.clear(); }
+void reset_lu_records()
+{
+  const std::lock_guard<std::mutex> lock(lu_records_mutex);
+  lu_records.clear();
+}
 
 double auto_memory_budget_mb(const SlabSolverOptions &opt)
 {

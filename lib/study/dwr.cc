@@ -15,11 +15,13 @@
 #include "slab/adjoint_march.h"
 #include "slab/primal_march.h"
 
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/tria.h>
 
 #include <cmath>
+#include <future>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -107,6 +109,16 @@ void copy_indicators(const Indicators<2> &ind, LoopRow &row)
   row.no_lift = ind.no_lift;
 }
 
+/// The adjoint march of a loop: its slab operator (kept for per-goal estimates), the
+/// adjoint slab solutions (one set per goal with goal.weights = estimate, else one for
+/// the weighted goal) and its wall time.
+struct AdjointMarch
+{
+  std::unique_ptr<SlabOperator<2>> op;
+  std::vector<std::vector<Vector<double>>> Z;
+  double wall = 0;
+};
+
 /// The adaptive loop of run_dwr: the scene, goals and meshes, the tables, and per loop
 /// the solves, the estimate, the outputs and the refinement.
 class AdaptiveLoop
@@ -120,22 +132,31 @@ private:
   /// outputs (probes, cut lines, VTU). False if the DoF budget stops the run first.
   bool solve_and_estimate(LoopRow &row, Indicators<2> &ind);
   /// The slab solver options, with the dump of the first slab matrix to
-  /// slab-<problem>-loop-NNNN.mtx in loop output.dump_slab_loop.
-  SlabSolverOptions dumping_solver_options(unsigned int loop, const std::string &problem) const;
+  /// slab-<problem>-loop-NNNN.mtx in loop output.dump_slab_loop; UMFPACK (no auto
+  /// choice inside a march thread) when the marches are concurrent.
+  SlabSolverOptions march_solver_options(unsigned int loop, const std::string &problem,
+                                         bool concurrent) const;
   /// The loop's memory estimate, checked against the limit (ResourceLimitError).
-  void check_loop_memory(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint);
+  /// Returns whether the primal and the adjoint march concurrently
+  /// (adaptivity.concurrent_marches: see its documentation for the conditions).
+  bool check_loop_memory(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint);
+  /// The adjoint(s) of the loop: independent of the primal unless goal.weights = auto
+  /// (then call it after evaluate_goals).
+  AdjointMarch march_adjoints(unsigned int loop, const Space<2> &adjoint,
+                              const std::vector<GoalSpec> &goal_specs,
+                              const MarchOptions &opt, bool concurrent) const;
   /// J_i(u_tau h), the weights (auto: from the patch lift) and the weighted J (not yet
   /// for goal.weights = estimate).
   void evaluate_goals(LoopRow &row, const Space<2> &primal,
                       const std::vector<Vector<double>> &U);
   /// The weights of the goals into row, and the weighted J and J_exact.
   void weigh_goals(LoopRow &row) const;
-  /// The adjoint(s) and the indicators ind of the weighted goal: one adjoint for
+  /// The indicators ind of the weighted goal from the adjoint march: one adjoint for
   /// J_w = sum_i w_i J_i, or (goal.weights = estimate) one per goal, w_i = sign(eta_i) /
   /// max(|J_i(u_h)|, 1e-12) and ind = sum_i w_i ind_i. Sets t_adjoint, t_estimate.
-  void adjoint_and_estimate(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
-                            const Space<2> &adjoint, const std::vector<Vector<double>> &U,
-                            const HigherOrderPrimal *hi, const MarchOptions &opt);
+  void estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
+                     const Space<2> &adjoint, const std::vector<Vector<double>> &U,
+                     const HigherOrderPrimal *hi, const MarchOptions &opt, AdjointMarch adj);
   /// The adjoint of one goal alone (weight 1), marched with opq.
   std::vector<Vector<double>> goal_adjoint(const Space<2> &adjoint, SlabOperator<2> &opq,
                                            const GoalSpec &goal,
@@ -145,11 +166,10 @@ private:
                               const std::vector<Vector<double>> &U,
                               const std::vector<Vector<double>> &Z, const GoalSpec &goal,
                               const HigherOrderPrimal *hi) const;
-  /// goal.weights = estimate: see adjoint_and_estimate.
+  /// goal.weights = estimate: see estimate_from.
   void estimate_by_goal(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
-                        const Space<2> &adjoint, std::unique_ptr<SlabOperator<2>> &opq,
-                        const std::vector<Vector<double>> &U, const HigherOrderPrimal *hi,
-                        const MarchOptions &opt);
+                        const Space<2> &adjoint, std::vector<std::vector<Vector<double>>> Z,
+                        const std::vector<Vector<double>> &U, const HigherOrderPrimal *hi);
   /// Probes and cut lines of u(T), and the VTU of the loop.
   void write_loop_outputs(LoopRow &row, const Space<2> &primal, const Vector<double> &uT,
                           const Indicators<2> &ind, const std::vector<double> &ar_cell);
@@ -309,15 +329,24 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
                   " > adaptivity.max_dofs";
     return false;
   }
-  check_loop_memory(row, primal, adjoint);
+  const bool concurrent = check_loop_memory(row, primal, adjoint);
+  row.concurrent = concurrent;
   MarchOptions opt;
   opt.label = "loop " + std::to_string(row.loop);
   opt.progress = false;
+  // The adjoint does not depend on the primal unless goal.weights = auto: with
+  // concurrent marches it runs in a second thread while the primal marches (the
+  // future's destructor waits for it if the primal fails).
+  std::future<AdjointMarch> adjoint_thread;
+  if (concurrent)
+    adjoint_thread = std::async(std::launch::async, [this, &adjoint, &opt,
+                                                     specs = goals, loop = row.loop]()
+                                { return march_adjoints(loop, adjoint, specs, opt, true); });
   Timer t;
   std::vector<Vector<double>> U;
   {
     // (the primal's factors are freed before the adjoint factorizes)
-    SlabOperator<2> op(primal, basis, dumping_solver_options(row.loop, "primal"));
+    SlabOperator<2> op(primal, basis, march_solver_options(row.loop, "primal", concurrent));
     U = march_primal(primal, mesh, basis, op, opt);
     report_auto_choice(row.loop, 0, op);
     row.lu_primal_mb = op.timings().factor_mb;
@@ -327,7 +356,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   std::vector<Vector<double>> U_hi;
   if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)
   {
-    SlabOperator<2> op(primal, basis_hi, slab_solver_options(prm));
+    SlabOperator<2> op(primal, basis_hi, march_solver_options(0, "", concurrent));
     U_hi = march_primal(primal, mesh, basis_hi, op, opt);
   }
   const HigherOrderPrimal hi{basis_hi, U_hi};
@@ -335,7 +364,9 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   row.t_primal = t.wall_time();
 
   evaluate_goals(row, primal, U);
-  adjoint_and_estimate(row, ind, primal, adjoint, U, hi_ptr, opt);
+  estimate_from(row, ind, primal, adjoint, U, hi_ptr, opt,
+                concurrent ? adjoint_thread.get()
+                           : march_adjoints(row.loop, adjoint, goals, opt, false));
   for (double e : ind.eta_tau_slab)
     if (!std::isfinite(e))
       throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
@@ -352,11 +383,14 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   return true;
 }
 
-SlabSolverOptions AdaptiveLoop::dumping_solver_options(unsigned int loop,
-                                                       const std::string &problem) const
+SlabSolverOptions AdaptiveLoop::march_solver_options(unsigned int loop,
+                                                     const std::string &problem,
+                                                     bool concurrent) const
 {
   SlabSolverOptions o = slab_solver_options(prm);
-  if (loop == prm.output.dump_slab_loop)
+  if (concurrent)
+    o.type = SolverType::direct;
+  if (loop > 0 && loop == prm.output.dump_slab_loop)
   {
     std::ostringstream name;
     name << prm.output.directory << "/slab-" << problem << "-loop-" << std::setw(4)
@@ -366,53 +400,59 @@ SlabSolverOptions AdaptiveLoop::dumping_solver_options(unsigned int loop,
   return o;
 }
 
-void AdaptiveLoop::adjoint_and_estimate(LoopRow &row, Indicators<2> &ind,
-                                        const Space<2> &primal, const Space<2> &adjoint,
-                                        const std::vector<Vector<double>> &U,
-                                        const HigherOrderPrimal *hi, const MarchOptions &opt)
+AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adjoint,
+                                          const std::vector<GoalSpec> &goal_specs,
+                                          const MarchOptions &opt, bool concurrent) const
 {
-  auto opq = std::make_unique<SlabOperator<2>>(adjoint, basis,
-                                               dumping_solver_options(row.loop, "adjoint"));
+  // goal.weights = estimate: all adjoints first (one factorization serves them), then
+  // the estimates without the adjoint's factors in memory
+  Timer t;
+  AdjointMarch a;
+  a.op = std::make_unique<SlabOperator<2>>(adjoint, basis,
+                                           march_solver_options(loop, "adjoint", concurrent));
+  if (estimate_weights)
+    for (const auto &goal : goal_specs)
+      a.Z.push_back(goal_adjoint(adjoint, *a.op, goal, opt));
+  else
+    a.Z.push_back(march_adjoint(adjoint, mesh, basis, *a.op,
+                                assemble_goal_vectors(adjoint, goal_specs), opt));
+  a.wall = t.wall_time();
+  return a;
+}
+
+void AdaptiveLoop::estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
+                                 const Space<2> &adjoint,
+                                 const std::vector<Vector<double>> &U,
+                                 const HigherOrderPrimal *hi, const MarchOptions &opt,
+                                 AdjointMarch adj)
+{
+  row.t_adjoint = adj.wall;
+  report_auto_choice(row.loop, 1, *adj.op);
+  row.lu_adjoint_mb = adj.op->timings().factor_mb;
+  // The estimator solves no slab system: the adjoint's factors and matrices go before
+  // it runs, unless the per-goal adjoints still need them.
+  if (estimate_weights || !prm.adaptivity.per_goal_estimates)
+    adj.op.reset();
   if (estimate_weights)
   {
-    estimate_by_goal(row, ind, primal, adjoint, opq, U, hi, opt);
+    estimate_by_goal(row, ind, primal, adjoint, std::move(adj.Z), U, hi);
     return;
   }
   Timer t;
-  const auto Z = march_adjoint(adjoint, mesh, basis, *opq,
-                               assemble_goal_vectors(adjoint, goals), opt);
-  row.t_adjoint = t.wall_time();
-  report_auto_choice(row.loop, 1, *opq);
-  row.lu_adjoint_mb = opq->timings().factor_mb;
-  // The estimator solves no slab system: the adjoint's factors and matrices go before
-  // it runs, unless the per-goal adjoints still need them.
-  if (!prm.adaptivity.per_goal_estimates)
-    opq.reset();
-  t.restart();
-  ind = estimate(primal, adjoint, mesh, basis, U, Z, goals, prm.adaptivity.time_indicator,
-                 hi, prm.adaptivity.space_indicator);
+  ind = estimate(primal, adjoint, mesh, basis, U, adj.Z[0], goals,
+                 prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator);
   row.t_estimate = t.wall_time();
   if (prm.adaptivity.per_goal_estimates)
-    estimate_per_goal(row, primal, adjoint, *opq, U, hi, opt);
+    estimate_per_goal(row, primal, adjoint, *adj.op, U, hi, opt);
 }
 
 void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
                                     const Space<2> &primal, const Space<2> &adjoint,
-                                    std::unique_ptr<SlabOperator<2>> &opq,
+                                    std::vector<std::vector<Vector<double>>> Z,
                                     const std::vector<Vector<double>> &U,
-                                    const HigherOrderPrimal *hi, const MarchOptions &opt)
+                                    const HigherOrderPrimal *hi)
 {
-  // All adjoints first (one factorization serves them), then the estimates without the
-  // adjoint's factors in memory.
   Timer t;
-  std::vector<std::vector<Vector<double>>> Z;
-  for (const auto &goal : goals)
-    Z.push_back(goal_adjoint(adjoint, *opq, goal, opt));
-  row.t_adjoint = t.wall_time();
-  report_auto_choice(row.loop, 1, *opq);
-  row.lu_adjoint_mb = opq->timings().factor_mb;
-  opq.reset();
-  t.restart();
   ind = Indicators<2>();
   for (std::size_t i = 0; i < goals.size(); ++i)
   {
@@ -469,18 +509,35 @@ void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
             << ", solver.type = auto: " << op.auto_choice() << "\n";
 }
 
-void AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
+bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
                                      const Space<2> &adjoint)
 {
-  const MemoryModel model = memory_model(prm, primal, &adjoint, row.n_t, base_mb,
-                                           static_cast<unsigned int>(goals.size()));
+  MemoryModel model = memory_model(prm, primal, &adjoint, row.n_t, base_mb,
+                                   static_cast<unsigned int>(goals.size()));
+  const SlabSolverOptions options = slab_solver_options(prm);
+  const bool higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
+  model.concurrent =
+      prm.adaptivity.concurrent_marches && !auto_weights && mpi_ranks() == 1 &&
+      MultithreadInfo::n_threads() > 1 && options.direct_solver == DirectEngine::umfpack &&
+      !model.primal.iterative && !model.adjoint.iterative &&
+      !(higher_order && solves_iteratively(options, primal.n_dofs(), prm.discretization.r + 2,
+                                           primal.degree(),
+                                           options.reuse_factorization &&
+                                               !model.time_dependent));
   row.mem_estimate = estimate_memory(model).total_mb;
+  if (model.concurrent && row.mem_estimate * mem_ratio > mem_limit.mb)
+  {
+    // both factorizations at once do not fit: one after the other
+    model.concurrent = false;
+    row.mem_estimate = estimate_memory(model).total_mb;
+  }
   check_memory(
       "loop " + std::to_string(row.loop), row.mem_estimate * mem_ratio, mem_limit, model,
       mem_ratio > 1. ? " (the model's " + json_number(std::round(row.mem_estimate), 10) +
                            " MB times " + json_number(mem_ratio, 3) + ", loop " +
                            std::to_string(row.loop - 1) + "'s measured/estimated peak)"
                      : "");
+  return model.concurrent;
 }
 
 void AdaptiveLoop::evaluate_goals(LoopRow &row, const Space<2> &primal,

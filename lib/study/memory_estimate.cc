@@ -70,7 +70,12 @@ MemoryEstimate estimate_memory(const MemoryModel &m)
     adjoint.solutions = solutions(m.primal, m.n_slabs) +
                         m.adjoints_stored * solutions(m.adjoint, m.n_slabs);
     add_operator(m.adjoint, m, adjoint);
-    if (adjoint.total() > peak.total())
+    if (m.concurrent)
+    {
+      adjoint.solutions += solutions(m.primal, m.extra_primal_slabs);
+      add_operator(m.primal, m, adjoint);
+    }
+    if (m.concurrent || adjoint.total() > peak.total())
       peak = adjoint;
   }
   MemoryEstimate e;

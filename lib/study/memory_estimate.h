@@ -41,6 +41,9 @@ struct MemoryModel
   /// adaptivity.measure_time_error: the primal on 4 N slabs beside the N-slab solution.
   unsigned int extra_primal_slabs = 0;
   double base_mb = 0; ///< resident memory of the process before the run's data
+  /// The primal and the adjoint marched at the same time (adaptivity.concurrent_marches):
+  /// one phase with both operators and all slab solutions.
+  bool concurrent = false;
 };
 
 struct MemoryEstimate

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# adaptivity.concurrent_marches: the adjoint marched in a second thread while the primal
+# marches gives the same loops.csv as one march after the other (moving_hump_paper with
+# fixed weights, moving_hump with goal.weights = estimate and the dG(r+1) primal), and
+# the concurrent column says which loops ran concurrently: all of them with the key true
+# (on a machine with more than one core), none with false, none with goal.weights = auto
+# (hemker: the adjoint's goal weights come from the primal).
+source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
+
+column_values() { # loops.csv COLUMN: the column's distinct values
+  /usr/bin/python3 - "$1" "$2" <<'PY'
+import csv, sys
+print(" ".join(sorted({r[sys.argv[2]] for r in csv.DictReader(open(sys.argv[1]))})))
+PY
+}
+
+cores=$(nproc)
+want_on=1
+[ "$cores" -gt 1 ] || want_on=0
+for case in "moving_hump_paper 7" "moving_hump 5"; do
+  set -- $case
+  for c in true false; do
+    "$bin" run "$src/config/$1.json" --set adaptivity.loops="$2" --set output.vtu_loops=0 \
+      --set adaptivity.concurrent_marches=$c --output "$tmp/$1_$c" >/dev/null 2>&1 ||
+      { echo "FAIL: $1 concurrent_marches=$c"; fail=1; continue 2; }
+  done
+  msg=$(same_loops "$tmp/$1_true/loops.csv" "$tmp/$1_false/loops.csv" 1e-12) || fail=1
+  echo "$1, concurrent against sequential marches: $msg"
+  on=$(column_values "$tmp/$1_true/loops.csv" concurrent)
+  off=$(column_values "$tmp/$1_false/loops.csv" concurrent)
+  if [ "$on" != "$want_on" ] || [ "$off" != 0 ]; then
+    echo "FAIL: $1: concurrent column '$on' with true (want $want_on on $cores cores), '$off' with false (want 0)"
+    fail=1
+  fi
+done
+
+"$bin" run "$src/config/hemker.json" --set adaptivity.loops=2 --set output.vtu_loops=0 \
+  --output "$tmp/hemker" >/dev/null 2>&1 || { echo "FAIL: hemker"; fail=1; }
+auto=$(column_values "$tmp/hemker/loops.csv" concurrent)
+[ "$auto" = 0 ] || { echo "FAIL: hemker (goal.weights = auto) marched concurrently: '$auto'"; fail=1; }
+exit $fail
