@@ -62,12 +62,13 @@ done
 /usr/bin/python3 - "$CSV" <<'PY'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
-print("| scene, loop | problem | N_space | AR | unknowns | solver | setup s | solve s | iterations | converged | s/slab amortized (10 slabs) | peak MB |")
+print("| scene, loop | problem | N_space | AR | unknowns | solver | setup s | solve s | iterations | converged | s/slab amortized | peak MB |")
 print("|---|---|---|---|---|---|---|---|---|---|---|---|")
 for r in rows:
     if not r["setup_s"]:
-        print(f'| {r["scene"]} {r["loop"]} | {r["problem"]} | {r["N_space"]} | {r["ar_max"]} | | {r["label"]} | failed | | | 0 | | |')
+        print(f'| {r["scene"]} {r["loop"]} | {r["problem"]} | {r["N_space"]} | | | {r["label"]} | failed | | | **no** | | |')
         continue
     am = float(r["setup_s"]) / 10 + float(r["solve_s"])
-    print(f'| {r["scene"]} {r["loop"]} | {r["problem"]} | {r["N_space"]} | {float(r["ar_max"]):.0f} | {r["unknowns"]} | {r["label"]} | {float(r["setup_s"]):.3g} | {float(r["solve_s"]):.3g} | {float(r["iterations"]):.1f} | {r["converged"]} | {am:.3g} | {float(r["peak_mb"]):.0f} |')
+    conv = "yes" if r["converged"] == "1" else "**no** (%.2g)" % float(r["residual"])
+    print(f'| {r["scene"]} {r["loop"]} | {r["problem"]} | {r["N_space"]} | {float(r["ar_max"]):.0f} | {r["unknowns"]} | {r["label"]} | {float(r["setup_s"]):.3g} | {float(r["solve_s"]):.3g} | {float(r["iterations"]):.0f} | {conv} | {am:.3g} | {float(r["peak_mb"]):.0f} |')
 PY
