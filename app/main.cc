@@ -1,4 +1,5 @@
 // anisodwr command-line program: parse, run, report.
+#include "base/blas_threads.h"
 #include "base/errors.h"
 #include "base/mpi.h"
 #include "config/parameters.h"
@@ -8,7 +9,6 @@
 
 #include <deal.II/base/multithread_info.h>
 
-#include <dlfcn.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -60,8 +60,7 @@ void start_mpi()
                      per_rank = std::max(1u, cores / anisodwr::mpi_ranks_on_this_machine());
   dealii::MultithreadInfo::set_thread_limit(per_rank);
   // OpenBLAS (if it is the BLAS in use) reads its thread count at load time
-  if (auto set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
-    set(int(per_rank));
+  anisodwr::set_blas_threads(int(per_rank));
   if (anisodwr::mpi_rank() != 0)
   {
     struct Discard : std::streambuf

@@ -6,6 +6,7 @@
 #include "adaptivity/estimator.h"
 #include "adaptivity/lifted_goal.h"
 #include "adaptivity/refinement.h"
+#include "base/blas_threads.h"
 #include "base/errors.h"
 #include "base/mpi.h"
 #include "goal/goal.h"
@@ -334,39 +335,44 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   MarchOptions opt;
   opt.label = "loop " + std::to_string(row.loop);
   opt.progress = false;
-  // The adjoint does not depend on the primal unless goal.weights = auto: with
-  // concurrent marches it runs in a second thread while the primal marches (the
-  // future's destructor waits for it if the primal fails).
-  std::future<AdjointMarch> adjoint_thread;
-  if (concurrent)
-    adjoint_thread = std::async(std::launch::async, [this, &adjoint, &opt,
-                                                     specs = goals, loop = row.loop]()
-                                { return march_adjoints(loop, adjoint, specs, opt, true); });
-  Timer t;
-  std::vector<Vector<double>> U;
+  std::vector<Vector<double>> U, U_hi;
+  const TemporalBasis basis_hi(prm.discretization.r + 1); // time_indicator = higher_order
+  AdjointMarch adj;
   {
-    // (the primal's factors are freed before the adjoint factorizes)
-    SlabOperator<2> op(primal, basis, march_solver_options(row.loop, "primal", concurrent));
-    U = march_primal(primal, mesh, basis, op, opt);
-    report_auto_choice(row.loop, 0, op);
-    row.lu_primal_mb = op.timings().factor_mb;
-  }
-  // the dG(r+1) primal of time_indicator = higher_order
-  const TemporalBasis basis_hi(prm.discretization.r + 1);
-  std::vector<Vector<double>> U_hi;
-  if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)
-  {
-    SlabOperator<2> op(primal, basis_hi, march_solver_options(0, "", concurrent));
-    U_hi = march_primal(primal, mesh, basis_hi, op, opt);
+    // The adjoint does not depend on the primal unless goal.weights = auto: with
+    // concurrent marches it runs in a second thread while the primal marches (the
+    // future's destructor waits for it if the primal fails). OpenBLAS then runs on one
+    // thread: its own threads would compete with the other march.
+    const ScopedBlasThreads blas(concurrent ? 1 : 0);
+    std::future<AdjointMarch> adjoint_thread;
+    if (concurrent)
+      adjoint_thread = std::async(std::launch::async, [this, &adjoint, &opt,
+                                                       specs = goals, loop = row.loop]()
+                                  { return march_adjoints(loop, adjoint, specs, opt, true); });
+    Timer t;
+    {
+      // (one after the other: the primal's factors are freed before the adjoint factorizes)
+      SlabOperator<2> op(primal, basis, march_solver_options(row.loop, "primal", concurrent));
+      U = march_primal(primal, mesh, basis, op, opt);
+      report_auto_choice(row.loop, 0, op);
+      row.lu_primal_mb = op.timings().factor_mb;
+    }
+    if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)
+    {
+      SlabOperator<2> op(primal, basis_hi, march_solver_options(0, "", concurrent));
+      U_hi = march_primal(primal, mesh, basis_hi, op, opt);
+    }
+    row.t_primal = t.wall_time();
+    if (concurrent)
+      adj = adjoint_thread.get();
   }
   const HigherOrderPrimal hi{basis_hi, U_hi};
   const HigherOrderPrimal *hi_ptr = U_hi.empty() ? nullptr : &hi;
-  row.t_primal = t.wall_time();
 
   evaluate_goals(row, primal, U);
-  estimate_from(row, ind, primal, adjoint, U, hi_ptr, opt,
-                concurrent ? adjoint_thread.get()
-                           : march_adjoints(row.loop, adjoint, goals, opt, false));
+  if (!concurrent)
+    adj = march_adjoints(row.loop, adjoint, goals, opt, false);
+  estimate_from(row, ind, primal, adjoint, U, hi_ptr, opt, std::move(adj));
   for (double e : ind.eta_tau_slab)
     if (!std::isfinite(e))
       throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
