@@ -1,6 +1,7 @@
 // Iterative slab solvers (Belos + Ifpack2 / Kronecker preconditioner) against UMFPACK
 // on small moving hump slab systems: primal (Q1) and adjoint (Q2, transposed), r = 0..2,
 // every Krylov method x preconditioner; preconditioner reuse, initial guess, fallback.
+#include "base/blas_threads.h"
 #include "base/errors.h"
 #include "config/parameters.h"
 #include "scene/scene.h"
@@ -773,4 +774,24 @@ TEST(Iterative, DownstreamNumberingMakesIluSweepWithTheFlow)
         EXPECT_LE(4 * down, native) << what;
       }
     }
+}
+
+TEST(BlasThreads, ScopedCountIsRestored)
+{
+  // the two concurrent marches of a DWR loop run OpenBLAS on one thread and give the
+  // count back afterwards
+  const int before = blas_threads();
+  if (before == 0)
+    GTEST_SKIP() << "the BLAS in use is not OpenBLAS";
+  set_blas_threads(2);
+  {
+    const ScopedBlasThreads one(1);
+    EXPECT_EQ(blas_threads(), 1);
+    {
+      const ScopedBlasThreads unchanged(0);
+      EXPECT_EQ(blas_threads(), 1);
+    }
+  }
+  EXPECT_EQ(blas_threads(), 2);
+  set_blas_threads(before);
 }

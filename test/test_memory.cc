@@ -51,6 +51,27 @@ TEST(MemoryEstimate, StoredSolutionsAreExact)
   EXPECT_NEAR(estimate_memory(m3).total_mb - e.total_mb, 900, 1e-9);
 }
 
+TEST(MemoryEstimate, ConcurrentMarchesHoldBothOperators)
+{
+  // adaptivity.concurrent_marches: one phase holding the primal's and the adjoint's
+  // operator and every slab solution, the dG(r+1) primal's included
+  for (const bool iterative : {false, true})
+  {
+    auto m = loop_model(1e5, 1, 36, iterative);
+    m.extra_primal_slabs = 40;
+    const auto sequential = estimate_memory(m); // the adjoint phase is the peak
+    auto primal_only = m;
+    primal_only.adjoint = {};
+    const auto primal_phase = estimate_memory(primal_only);
+    m.concurrent = true;
+    const auto concurrent = estimate_memory(m);
+    EXPECT_NEAR(concurrent.solver_mb, sequential.solver_mb + primal_phase.solver_mb, 1e-9);
+    EXPECT_DOUBLE_EQ(concurrent.solutions_mb, 8. * 2 * (1e5 * (36 + 40) + 4e5 * 36) / MB);
+    EXPECT_GT(concurrent.total_mb, sequential.total_mb);
+    EXPECT_GT(concurrent.matrices_mb, sequential.matrices_mb);
+  }
+}
+
 TEST(MemoryEstimate, PrimalOnlyRun)
 {
   MemoryModel m;
