@@ -208,8 +208,9 @@ TEST(Goals, EstimateWeightsAddTheGoalsEstimatesWithoutCancelling)
 {
   // w_i = sign(eta_i) / |J_i(u_h)| with eta_i from goal i's own adjoint: eta of J_w (its
   // indicators are sum_i w_i times goal i's) is sum_i |eta_i| / |J_i(u_h)|, and the
-  // error of J_w is sum_i sign(eta_i) (J_i(u) - J_i(u_h)) / |J_i(u_h)|. Moving hump,
-  // 6 loops, to 1e-7 relative (loops.csv prints 8 digits).
+  // error of J_w is sum_i sign(eta_i) (J_i(u) - J_i(u_h)) / |J_i(u_h)|; each goal's
+  // eta_hx_, eta_hy_, eta_tau_ columns add up to its eta_. Moving hump, 6 loops, to 1e-7
+  // relative (loops.csv prints 8 digits).
   const std::string dir = "regression_estimate_weights";
   ASSERT_EQ(run("moving_hump.json", dir,
                 "--set goal.weights=estimate --set adaptivity.loops=6 "
@@ -228,6 +229,10 @@ TEST(Goals, EstimateWeightsAddTheGoalsEstimatesWithoutCancelling)
       ASSERT_GT(Ji, 0.);
       eta += std::abs(eta_i) / Ji;
       err += (eta_i >= 0 ? 1. : -1.) * t[l].at("err_" + g) / Ji;
+      // each goal's parts add up to its estimate
+      const double parts =
+          t[l].at("eta_hx_" + g) + t[l].at("eta_hy_" + g) + t[l].at("eta_tau_" + g);
+      EXPECT_NEAR(parts, eta_i, 1e-7 * std::abs(eta_i) + 1e-14) << "loop " << l + 1;
     }
     EXPECT_NEAR(t[l].at("eta_tauh"), eta, 1e-7 * eta) << "loop " << l + 1;
     EXPECT_NEAR(t[l].at("J_error"), std::abs(err), 1e-7 * std::abs(err) + 1e-12)

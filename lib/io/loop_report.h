@@ -39,6 +39,9 @@ struct LoopRow
   double concurrent = 0;
   /// adaptivity.per_goal_estimates: eta_tau h of each goal from its own adjoint
   std::vector<double> eta_goal;
+  /// the same goals' parts eta_h,x, eta_h,y, eta_tau (signed), so that cancellation
+  /// between them is visible per goal
+  std::vector<std::array<double, 3>> eta_goal_parts;
   /// the cells of the refinement that follows this loop (zeros on the last): marked,
   /// cut in x only, in y only, in both, flagged or extended by the closure
   std::array<unsigned int, 5> marking{};

@@ -465,6 +465,7 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
     const auto part = goal_estimate(primal, adjoint, U, Z[i], goals[i], hi);
     Z[i] = {};
     row.eta_goal.push_back(part.eta_h_total() + part.eta_tau);
+    row.eta_goal_parts.push_back({{part.eta_h[0], part.eta_h[1], part.eta_tau}});
     goals[i].weight = sign_weight(row.eta_goal[i], row.J_goal[i]);
     add_scaled(ind, goals[i].weight, part);
   }
@@ -482,6 +483,7 @@ void AdaptiveLoop::estimate_per_goal(LoopRow &row, const Space<2> &primal,
     const auto ig =
         goal_estimate(primal, adjoint, U, goal_adjoint(adjoint, opq, goal, opt), goal, hi);
     row.eta_goal.push_back(ig.eta_h_total() + ig.eta_tau);
+    row.eta_goal_parts.push_back({{ig.eta_h[0], ig.eta_h[1], ig.eta_tau}});
   }
 }
 
