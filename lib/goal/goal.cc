@@ -9,6 +9,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -67,35 +68,65 @@ template <int dim> struct LocalGoal<dim>::Part
   bool dirac = false;
   typename Triangulation<dim>::active_cell_iterator dirac_cell;
   Point<dim> dirac_unit;
-  /// FEValues on iterated Gauss rules, one per number of sub-cells (built on demand)
-  mutable std::map<unsigned int, std::unique_ptr<FEValues<dim>>> values;
+  /// FEValues on iterated Gauss rules, one per number of sub-cells along each unit
+  /// direction of the cell (built on demand)
+  using SubCells = std::array<unsigned int, dim>;
+  mutable std::map<SubCells, std::unique_ptr<FEValues<dim>>> values;
 
-  /// Sub-cells per direction on `cell`: at most s/16 wide for mollifiers (at most 64
-  /// per direction), 8 for a cell cut by a rectangle's edge, 1 inside it.
-  unsigned int sub_cells(const typename Triangulation<dim>::active_cell_iterator &cell) const
+  /// Sub-cells along each unit direction of `cell`: for mollifiers at most s/16 wide
+  /// along that direction (a power of two), so that a long thin cell near the goal is
+  /// subdivided along its length only, with at most 64^dim sub-cells in all (a large
+  /// square cell: 64 per direction, as wide as s/16 allows only up to 4 s); 8 per
+  /// direction for a cell cut by a rectangle's edge, 1 inside it.
+  SubCells sub_cells(const typename Triangulation<dim>::active_cell_iterator &cell) const
   {
+    SubCells n;
     if (goal.kind == GoalKind::point)
     {
-      const double n = std::ceil(16. * cell->diameter() / goal.radius);
-      unsigned int k = 1;
-      while (k < n && k < 64)
-        k *= 2;
-      return k;
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        // the longest cell edge along unit direction d (vertices v and v + 2^d)
+        double length = 0;
+        for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+          if (!(v & (1u << d)))
+            length = std::max(length, cell->vertex(v).distance(cell->vertex(v | (1u << d))));
+        const double want = std::ceil(16. * length / goal.radius);
+        n[d] = 1;
+        while (n[d] < want && n[d] < 1024)
+          n[d] *= 2;
+      }
+      // at most 64^dim sub-cells: halve the largest count (a large square cell gets
+      // 64 x 64, a long thin one up to 1024 along its length)
+      auto product = [&]()
+      {
+        unsigned int k = 1;
+        for (unsigned int m : n)
+          k *= m;
+        return k;
+      };
+      while (product() > std::pow(64u, dim))
+        *std::max_element(n.begin(), n.end()) /= 2;
+      return n;
     }
+    n.fill(1);
     for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
       for (unsigned int d = 0; d < dim; ++d)
         if (cell->vertex(v)[d] < lo[d] || cell->vertex(v)[d] > hi[d])
-          return 8;
-    return 1;
+          n.fill(8);
+    return n;
   }
-  FEValues<dim> &fe_values(unsigned int n, const Mapping<dim> &mapping,
+  FEValues<dim> &fe_values(const SubCells &n, const Mapping<dim> &mapping,
                            const FiniteElement<dim> &fe) const
   {
     auto &v = values[n];
     if (!v)
+    {
+      static_assert(dim == 2, "LocalGoal: tensor rule for dim = 2");
+      const QGauss<1> base(fe.degree + 2);
       v = std::make_unique<FEValues<dim>>(
-        mapping, fe, QIterated<dim>(QGauss<1>(fe.degree + 2), n),
-        update_values | update_quadrature_points | update_JxW_values);
+          mapping, fe, Quadrature<dim>(QIterated<1>(base, n[0]), QIterated<1>(base, n[1])),
+          update_values | update_quadrature_points | update_JxW_values);
+    }
     return *v;
   }
 
