@@ -110,6 +110,13 @@ void copy_indicators(const Indicators<2> &ind, LoopRow &row)
   row.no_lift = ind.no_lift;
 }
 
+/// One goal's own estimate and its signed parts into row (eta_<goal>, eta_hx_<goal>, ...).
+void add_goal_estimate(LoopRow &row, const Indicators<2> &goal_ind)
+{
+  row.eta_goal.push_back(goal_ind.eta_h_total() + goal_ind.eta_tau);
+  row.eta_goal_parts.push_back({{goal_ind.eta_h[0], goal_ind.eta_h[1], goal_ind.eta_tau}});
+}
+
 /// The adjoint march of a loop: its slab operator (kept for per-goal estimates), the
 /// adjoint slab solutions (one set per goal with goal.weights = estimate, else one for
 /// the weighted goal) and its wall time.
@@ -464,8 +471,7 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   {
     const auto part = goal_estimate(primal, adjoint, U, Z[i], goals[i], hi);
     Z[i] = {};
-    row.eta_goal.push_back(part.eta_h_total() + part.eta_tau);
-    row.eta_goal_parts.push_back({{part.eta_h[0], part.eta_h[1], part.eta_tau}});
+    add_goal_estimate(row, part);
     goals[i].weight = sign_weight(row.eta_goal[i], row.J_goal[i]);
     add_scaled(ind, goals[i].weight, part);
   }
@@ -482,8 +488,7 @@ void AdaptiveLoop::estimate_per_goal(LoopRow &row, const Space<2> &primal,
   {
     const auto ig =
         goal_estimate(primal, adjoint, U, goal_adjoint(adjoint, opq, goal, opt), goal, hi);
-    row.eta_goal.push_back(ig.eta_h_total() + ig.eta_tau);
-    row.eta_goal_parts.push_back({{ig.eta_h[0], ig.eta_h[1], ig.eta_tau}});
+    add_goal_estimate(row, ig);
   }
 }
 
