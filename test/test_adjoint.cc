@@ -83,7 +83,7 @@ TEST(Mollifier, ThinCellsIntegrateLinearFunctionsExactly)
   const auto scene = manufactured();
   const auto f = [](const Point<2> &x) { return 1. + 2. * x[0] - 3. * x[1]; };
   for (const std::array<unsigned int, 2> cells :
-       {std::array<unsigned int, 2>{4, 256}, {256, 4}, {32, 32}})
+       {std::array<unsigned int, 2>{{4, 256}}, {{256, 4}}, {{32, 32}}})
     for (unsigned int p : {1u, 2u})
     {
       Triangulation<2> tria;
@@ -99,6 +99,36 @@ TEST(Mollifier, ThinCellsIntegrateLinearFunctionsExactly)
       VectorTools::interpolate(space.mapping(), space.dof_handler(),
                                ScalarFunctionFromFunctionObject<2>(f), fh);
       EXPECT_NEAR(j * fh, f(Point<2>(0.45, 0.52)), 1e-9)
+          << cells[0] << " x " << cells[1] << " cells, p = " << p;
+    }
+}
+
+TEST(Mollifier, LargeCellsIntegrateLinearFunctionsExactly)
+{
+  // Cells 25-100 times wider than the support (s = 0.01): the rule is restricted to the
+  // part of the cell that holds the support, s/16 per sub-cell. A goal inside one
+  // cell and one on a vertex shared by four cells; j(f) = f(c) for linear f.
+  const auto scene = manufactured();
+  const auto f = [](const Point<2> &x) { return 1. + 2. * x[0] - 3. * x[1]; };
+  for (const auto &[cells, center] :
+       {std::pair<std::array<unsigned int, 2>, Point<2>>{{{1, 1}}, Point<2>(0.45, 0.52)},
+        {{{2, 2}}, Point<2>(0.497, 0.504)},
+        {{{3, 2}}, Point<2>(0.61, 0.2)}})
+    for (unsigned int p : {1u, 2u})
+    {
+      Triangulation<2> tria;
+      GridGenerator::subdivided_hyper_rectangle(
+          tria, {cells[0], cells[1]}, Point<2>(0., 0.), Point<2>(1., 1.));
+      Space<2> space(*scene, tria, p, 0.);
+      space.setup();
+      GoalSpec g;
+      g.center = {center[0], center[1]};
+      g.radius = 0.01;
+      Vector<double> j, fh(space.n_dofs());
+      assemble_goal_vector(space, g, j);
+      VectorTools::interpolate(space.mapping(), space.dof_handler(),
+                               ScalarFunctionFromFunctionObject<2>(f), fh);
+      EXPECT_NEAR(j * fh, f(center), 1e-9)
           << cells[0] << " x " << cells[1] << " cells, p = " << p;
     }
 }

@@ -75,24 +75,24 @@ template <int dim> struct LocalGoal<dim>::Part
 
   /// Sub-cells along each unit direction of `cell`: for mollifiers at most s/16 wide
   /// along that direction (a power of two), so that a long thin cell near the goal is
-  /// subdivided along its length only, with at most 64^dim sub-cells in all (a large
-  /// square cell: 64 per direction, as wide as s/16 allows only up to 4 s); 8 per
-  /// direction for a cell cut by a rectangle's edge, 1 inside it.
-  SubCells sub_cells(const typename Triangulation<dim>::active_cell_iterator &cell) const
+  /// subdivided along its length only, with at most 64^dim sub-cells in all (a long
+  /// thin cell: up to 1024 along its length); 8 per direction for a cell cut by a
+  /// rectangle's edge, 1 inside it. `capped` tells whether a cap kept a sub-cell wider
+  /// than s/16 (a cell much larger than the mollifier's support).
+  SubCells sub_cells(const typename Triangulation<dim>::active_cell_iterator &cell,
+                     bool *capped = nullptr) const
   {
     SubCells n;
+    if (capped)
+      *capped = false;
     if (goal.kind == GoalKind::point)
     {
+      std::array<double, dim> want;
       for (unsigned int d = 0; d < dim; ++d)
       {
-        // the longest cell edge along unit direction d (vertices v and v + 2^d)
-        double length = 0;
-        for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
-          if (!(v & (1u << d)))
-            length = std::max(length, cell->vertex(v).distance(cell->vertex(v | (1u << d))));
-        const double want = std::ceil(16. * length / goal.radius);
+        want[d] = std::ceil(16. * edge_length(cell, d) / goal.radius);
         n[d] = 1;
-        while (n[d] < want && n[d] < 1024)
+        while (n[d] < want[d] && n[d] < 1024)
           n[d] *= 2;
       }
       // at most 64^dim sub-cells: halve the largest count (a large square cell gets
@@ -106,6 +106,9 @@ template <int dim> struct LocalGoal<dim>::Part
       };
       while (product() > std::pow(64u, dim))
         *std::max_element(n.begin(), n.end()) /= 2;
+      if (capped)
+        for (unsigned int d = 0; d < dim; ++d)
+          *capped |= n[d] < want[d];
       return n;
     }
     n.fill(1);
@@ -115,19 +118,97 @@ template <int dim> struct LocalGoal<dim>::Part
           n.fill(8);
     return n;
   }
+  /// The longest edge of `cell` along unit direction d (vertices v and v + 2^d).
+  static double edge_length(const typename Triangulation<dim>::active_cell_iterator &cell,
+                            unsigned int d)
+  {
+    double length = 0;
+    for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+      if (!(v & (1u << d)))
+        length = std::max(length, cell->vertex(v).distance(cell->vertex(v | (1u << d))));
+    return length;
+  }
+  static Quadrature<dim> tensor_rule(const Quadrature<1> &q0, const Quadrature<1> &q1)
+  {
+    static_assert(dim == 2, "LocalGoal: tensor rule for dim = 2");
+    return Quadrature<dim>(q0, q1);
+  }
   FEValues<dim> &fe_values(const SubCells &n, const Mapping<dim> &mapping,
                            const FiniteElement<dim> &fe) const
   {
     auto &v = values[n];
     if (!v)
     {
-      static_assert(dim == 2, "LocalGoal: tensor rule for dim = 2");
       const QGauss<1> base(fe.degree + 2);
       v = std::make_unique<FEValues<dim>>(
-          mapping, fe, Quadrature<dim>(QIterated<1>(base, n[0]), QIterated<1>(base, n[1])),
+          mapping, fe, tensor_rule(QIterated<1>(base, n[0]), QIterated<1>(base, n[1])),
           update_values | update_quadrature_points | update_JxW_values);
     }
     return *v;
+  }
+  /// The rule for a cell much larger than the mollifier's support: the iterated Gauss
+  /// rule restricted to the box of unit coordinates that holds the support (the
+  /// preimage of the circle |x - c| = s, sampled at 64 points, widened by 2% and
+  /// clipped to the unit cell), with sub-cells at most s/32 wide (at most 64 along a
+  /// direction: the support spans 2 s; finer than s/16 because the support is cut by
+  /// cell edges here, where the composite rule loses the bump's smooth end). Returns
+  /// false if that
+  /// box is empty (the support misses the cell) or a sample point cannot be mapped
+  /// back; then `rule` is left untouched.
+  bool clipped_rule(const typename Triangulation<dim>::active_cell_iterator &cell,
+                    const Mapping<dim> &mapping, const FiniteElement<dim> &fe,
+                    std::unique_ptr<FEValues<dim>> &rule, bool &empty) const
+  {
+    static_assert(dim == 2, "LocalGoal: clipped rule for dim = 2");
+    empty = false;
+    Point<dim> a, b;
+    for (unsigned int d = 0; d < dim; ++d)
+      a[d] = 1e300, b[d] = -1e300;
+    constexpr unsigned int samples = 64;
+    for (unsigned int k = 0; k < samples; ++k)
+    {
+      const double phi = 2. * M_PI * k / samples;
+      const Point<dim> x = c + goal.radius * Point<dim>(std::cos(phi), std::sin(phi));
+      Point<dim> xi;
+      try
+      {
+        xi = mapping.transform_real_to_unit_cell(cell, x);
+      }
+      catch (...)
+      {
+        return false;
+      }
+      for (unsigned int d = 0; d < dim; ++d)
+        a[d] = std::min(a[d], xi[d]), b[d] = std::max(b[d], xi[d]);
+    }
+    std::array<Quadrature<1>, dim> q;
+    const QGauss<1> base(fe.degree + 2);
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      const double margin = 0.02 * (b[d] - a[d]);
+      const double lo_d = std::max(0., a[d] - margin), hi_d = std::min(1., b[d] + margin);
+      if (!(hi_d > lo_d))
+      {
+        empty = true;
+        return true;
+      }
+      unsigned int m = 1;
+      while (m < 1024 && m * goal.radius < 32. * (hi_d - lo_d) * edge_length(cell, d))
+        m *= 2;
+      const QIterated<1> unit(base, m);
+      std::vector<Point<1>> points(unit.size());
+      std::vector<double> weights(unit.size());
+      for (unsigned int i = 0; i < unit.size(); ++i)
+      {
+        points[i][0] = lo_d + (hi_d - lo_d) * unit.point(i)[0];
+        weights[i] = (hi_d - lo_d) * unit.weight(i);
+      }
+      q[d] = Quadrature<1>(points, weights);
+    }
+    rule = std::make_unique<FEValues<dim>>(
+        mapping, fe, tensor_rule(q[0], q[1]),
+        update_values | update_quadrature_points | update_JxW_values);
+    return true;
   }
 
   double density(const Point<dim> &x) const
@@ -221,7 +302,12 @@ bool LocalGoal<dim>::cell_vector(
     }
     if (!part->meets(cell))
       continue;
-    FEValues<dim> &fv = part->fe_values(part->sub_cells(cell), mapping, fe);
+    bool capped = false, empty = false;
+    const auto n = part->sub_cells(cell, &capped);
+    std::unique_ptr<FEValues<dim>> clipped;
+    if (capped && part->clipped_rule(cell, mapping, fe, clipped, empty) && empty)
+      continue;
+    FEValues<dim> &fv = clipped ? *clipped : part->fe_values(n, mapping, fe);
     fv.reinit(cell);
     for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
     {
