@@ -362,10 +362,11 @@ std::vector<Entry> adaptivity_entries()
        "memory limit; otherwise (and with false) the primal, then the adjoint. The "
        "results are the same either way; t_primal and t_adjoint then overlap."},
       {"adaptivity", "measure_time_error", "false", m(&S::measure_time_error), boolean,
-       "Diagnostic: on every loop solve the primal again with the slabs bisected once "
-       "and twice and report the extrapolated temporal goal error on the loop's spatial "
-       "mesh (loops.csv: err_tau, err_tau_order) next to eta_tau; costs ~6 primal "
-       "solves."},
+       "Diagnostic: on every loop solve the primal on the loop's spatial mesh with its "
+       "slabs, bisected once and bisected twice, all with the SUPG parameters of the "
+       "finest (delta_K <= supg_tau_factor * tau_n / 4), and report the extrapolated "
+       "temporal goal error next to eta_tau (loops.csv: err_tau, err_tau_order; "
+       "err_time_<goal> per goal); costs 7 primal solves per slab."},
       {"adaptivity", "adjoint_degree", "0", m(&S::adjoint_degree), integer(0, 8),
        "Polynomial degree q of the adjoint; 0 means q = 2p."},
       {"adaptivity", "space_indicator", "average", m(&S::space_indicator), by_name,

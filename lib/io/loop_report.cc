@@ -58,6 +58,8 @@ std::vector<double> LoopRow::all_values() const
   for (unsigned int part = 0; part < 3; ++part)
     for (std::size_t g = 0; g < J_goal.size(); ++g)
       v.push_back(g < eta_goal_parts.size() ? eta_goal_parts[g][part] : nan);
+  for (std::size_t g = 0; g < J_goal.size(); ++g)
+    v.push_back(g < err_tau_goal.size() ? err_tau_goal[g] : nan);
   v.insert(v.end(), {eta_tau_rho, eta_tau_rhostar, err_tau, err_tau_order,
                      double(marking[0]), double(marking[1]), double(marking[2]),
                      double(marking[3]), double(marking[4]), mem_estimate, eta_h_rho,
@@ -68,9 +70,10 @@ std::vector<double> LoopRow::all_values() const
 /// Columns after `columns` in loops.csv: the signed error J_i(u) - J_i(u_tau h) of each
 /// goal (unweighted; empty without an exact solution), each goal's own eta_tau h and
 /// I_eff (adaptivity.per_goal_estimates; else empty) and its parts eta_h,x, eta_h,y,
-/// eta_tau (columns eta_hx_<goal>, eta_hy_<goal>, eta_tau_<goal>), the two halves of
-/// eta_tau, the
-/// measured temporal error (adaptivity.measure_time_error; else empty), and
+/// eta_tau (columns eta_hx_<goal>, eta_hy_<goal>, eta_tau_<goal>), each goal's measured
+/// temporal error (err_time_<goal>, unweighted; adaptivity.measure_time_error, else
+/// empty), the two halves of eta_tau, the measured temporal error of the weighted goal
+/// and its observed order (the same key), and
 /// the cells of the refinement after the loop: marked, cut in x only, in y only, in
 /// both, and flagged or extended by the closure; the loop's memory estimate; last the
 /// parts of eta_h (1/2 rho(u)(z - R_i z), the adjoint half, S(u)(R_h z), summed over
@@ -81,7 +84,7 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
 {
   auto c = columns;
   for (const std::string prefix :
-       {"err_", "eta_", "I_eff_", "eta_hx_", "eta_hy_", "eta_tau_"})
+       {"err_", "eta_", "I_eff_", "eta_hx_", "eta_hy_", "eta_tau_", "err_time_"})
     for (const auto &name : goal_names)
       c.push_back(prefix + name);
   c.insert(c.end(),

@@ -30,6 +30,8 @@ struct LoopRow
   /// adaptivity.measure_time_error: J_w(u_h) - J_w(u_tau h) on this spatial mesh,
   /// extrapolated from the time mesh bisected once and twice (NaN when not measured)
   double err_tau = nan, err_tau_order = nan;
+  /// the same per goal, unweighted (NaN where it does not contract)
+  std::vector<double> err_tau_goal;
   /// memory estimate of the loop (MB), made before it started (study/memory_estimate.h)
   double mem_estimate = nan;
   /// UMFPACK's factor size (MB) of the primal and the adjoint slab matrix (0: solved

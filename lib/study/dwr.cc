@@ -21,7 +21,9 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/grid/tria.h>
 
+#include <array>
 #include <cmath>
+#include <functional>
 #include <future>
 #include <iomanip>
 #include <iostream>
@@ -55,45 +57,60 @@ double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &m
   return evaluate_goal(assemble_goal_vectors(space, {unweighted(goal)}), mesh, basis, U);
 }
 
-/// The temporal part of the goal error on the current spatial mesh, measured: the
-/// primal is solved again on the time mesh bisected once and twice; with
-/// d1 = J(2N) - J(N), d2 = J(4N) - J(2N) and the observed order k = log2(d1 / d2),
-/// J(inf) - J(N) = d1 + d2 / (2^k - 1) (Richardson). Returns {error, k}, both NaN when
+/// The temporal part of the goal error on the current spatial mesh, measured (row.err_tau,
+/// err_tau_order for the weighted goal, err_tau_goal per goal unweighted): the
+/// primal is solved on the time mesh, bisected once and bisected twice, all three with
+/// the SUPG parameters of the twice-bisected mesh (delta_K <= supg_tau_factor * tau_n / 4,
+/// built by `space(s)` with the bound scaled by s = 1/4, 1/2, 1): delta_K bounded by the
+/// slab length is what keeps small slabs stable, so that only the time mesh changes
+/// between the three and not the spatial discretization. With d1 = J(2N) - J(N),
+/// d2 = J(4N) - J(2N) and the observed order k = log2(d1 / d2),
+/// J(inf) - J(N) = d1 + d2 2^k / (2^k - 1) (Richardson).
+/// J(inf) - J(N) from J(N), J(2N), J(4N) and the observed order k, or NaN, NaN when
 /// the differences do not contract (k <= 1/2).
-std::pair<double, double> measure_time_error(const Space<2> &primal, const TimeMesh &mesh,
-                                             const TemporalBasis &basis,
-                                             const SlabSolverOptions &solver,
-                                             const std::vector<GoalSpec> &goals,
-                                             double J_N, const MarchOptions &opt)
+std::pair<double, double> richardson(const std::array<double, 3> &J)
 {
-  auto bisect = [](const TimeMesh &m)
-  { return refine_time(m, std::vector<double>(m.n_slabs(), 1.), 1.); };
-  const GoalVectors gv = assemble_goal_vectors(primal, goals);
-  std::vector<double> J{J_N};
-  TimeMesh m = mesh;
-  for (unsigned int level = 1; level <= 2; ++level)
-  {
-    m = bisect(m);
-    SlabOperator<2> op(primal, basis, solver);
-    const auto U = march_primal(primal, m, basis, op, opt);
-    J.push_back(evaluate_goal(gv, m, basis, U));
-  }
-  std::cout << "  " << opt.label << ": temporal error check, J_w with " << mesh.n_slabs()
-            << ", " << 2 * mesh.n_slabs() << ", " << 4 * mesh.n_slabs()
-            << " slabs: " << num(J[0]) << ", " << num(J[1]) << ", " << num(J[2])
-            << std::endl;
   const double d1 = J[1] - J[0], d2 = J[2] - J[1];
   const double k = std::log2(d1 / d2);
   if (!(k > 0.5) || !std::isfinite(k))
+    return {nan, nan};
+  // d1, d2, d2 / 2^k, d2 / 4^k, ...: J(inf) - J(N) = d1 + d2 + d2 / (2^k - 1)
+  return {d1 + d2 * std::pow(2., k) / (std::pow(2., k) - 1.), k};
+}
+
+void measure_time_error(const std::function<std::unique_ptr<Space<2>>(double)> &space,
+                        const TimeMesh &mesh, const TemporalBasis &basis,
+                        const SlabSolverOptions &solver, const std::vector<GoalSpec> &goals,
+                        const MarchOptions &opt, LoopRow &row)
+{
+  auto bisect = [](const TimeMesh &m)
+  { return refine_time(m, std::vector<double>(m.n_slabs(), 1.), 1.); };
+  // J[0]: the weighted goal, J[1 + i]: goal i unweighted; per level
+  std::vector<std::array<double, 3>> J(goals.size() + 1);
+  TimeMesh m = mesh;
+  for (unsigned int level = 0; level <= 2; ++level)
   {
-    // not contracting: on strongly anisotropic meshes the SUPG-weighted mass with
-    // cell-wise delta_K is indefinite and small slabs can be unstable (doc/results.md)
+    if (level > 0)
+      m = bisect(m);
+    const auto primal = space(std::pow(2., level) / 4.);
+    SlabOperator<2> op(*primal, basis, solver);
+    const auto U = march_primal(*primal, m, basis, op, opt);
+    J[0][level] = evaluate_goal(assemble_goal_vectors(*primal, goals), m, basis, U);
+    for (std::size_t i = 0; i < goals.size(); ++i)
+      J[1 + i][level] = goal_value(*primal, goals[i], m, basis, U);
+  }
+  std::cout << "  " << opt.label << ": temporal error check, J_w with " << mesh.n_slabs()
+            << ", " << 2 * mesh.n_slabs() << ", " << 4 * mesh.n_slabs()
+            << " slabs: " << num(J[0][0]) << ", " << num(J[0][1]) << ", " << num(J[0][2])
+            << std::endl;
+  std::tie(row.err_tau, row.err_tau_order) = richardson(J[0]);
+  if (std::isnan(row.err_tau))
     std::cout << "  " << opt.label
               << ": temporal error check does not contract; err_tau not reported"
               << std::endl;
-    return {nan, nan};
-  }
-  return {d1 + d2 / (std::pow(2., k) - 1.), k};
+  row.err_tau_goal.clear();
+  for (std::size_t i = 0; i < goals.size(); ++i)
+    row.err_tau_goal.push_back(richardson(J[1 + i]).first);
 }
 
 /// The loop table's copy of the estimator's sums.
@@ -384,8 +401,10 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
     if (!std::isfinite(e))
       throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
   if (prm.adaptivity.measure_time_error)
-    std::tie(row.err_tau, row.err_tau_order) = measure_time_error(
-        primal, mesh, basis, slab_solver_options(prm), goals, row.J, opt);
+    measure_time_error(
+        [&](double tau_scale)
+        { return make_space(prm, *scene, tria, prm.discretization.p, tau_scale); },
+        mesh, basis, slab_solver_options(prm), goals, opt, row);
   copy_indicators(ind, row);
   std::vector<double> ar_cell;
   row.ar = max_aspect_ratio(tria, primal.mapping(), &ar_cell);

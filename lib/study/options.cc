@@ -48,14 +48,15 @@ MarkingOptions marking_options(const Parameters &prm)
 
 namespace
 {
-std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
-                                     const dealii::Triangulation<2, 2> &tria,
-                                     unsigned int degree, double delta0)
+std::unique_ptr<Space<2>> make_space_with(const Parameters &prm, const Scene<2> &scene,
+                                          const dealii::Triangulation<2, 2> &tria,
+                                          unsigned int degree, double delta0,
+                                          double tau_scale)
 {
   const DiscretizationSection &d = prm.discretization;
   auto space = std::make_unique<Space<2>>(scene, tria, degree, delta0,
                                           d.supg_length == SupgLength::streamline,
-                                          d.supg_tau_factor);
+                                          d.supg_tau_factor * tau_scale);
   const DofNumbering numbering = prm.solver.dof_numbering;
   space->set_downstream_numbering(
       numbering == DofNumbering::downstream ||
@@ -67,9 +68,9 @@ std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scen
 
 std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
                                      const dealii::Triangulation<2, 2> &tria,
-                                     unsigned int degree)
+                                     unsigned int degree, double tau_scale)
 {
-  return make_space(prm, scene, tria, degree, prm.discretization.delta0);
+  return make_space_with(prm, scene, tria, degree, prm.discretization.delta0, tau_scale);
 }
 
 std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<2> &scene,
@@ -80,6 +81,6 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
   const double delta0 = a.adjoint_stabilization == AdjointStabilization::none ? 0.
                         : a.adjoint_delta0 >= 0                              ? a.adjoint_delta0
                                                 : prm.discretization.delta0;
-  return make_space(prm, scene, tria, degree, delta0);
+  return make_space_with(prm, scene, tria, degree, delta0, 1.);
 }
 } // namespace anisodwr

@@ -33,10 +33,12 @@ SlabSolverOptions slab_solver_options(const Parameters &prm);
 MarkingOptions marking_options(const Parameters &prm);
 
 /// The FE_Q(degree) space of a run on `tria`, set up: SUPG from the discretization
-/// section, DoFs numbered as solver.dof_numbering says.
+/// section, DoFs numbered as solver.dof_numbering says. tau_scale multiplies
+/// supg_tau_factor: on slabs bisected k times, tau_scale = 2^k keeps every delta_K of
+/// the unbisected slabs.
 std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
                                      const dealii::Triangulation<2, 2> &tria,
-                                     unsigned int degree);
+                                     unsigned int degree, double tau_scale = 1.);
 /// The adjoint's space: as make_space, with the delta0 of the adaptivity section
 /// (adjoint_stabilization, adjoint_delta0).
 std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<2> &scene,

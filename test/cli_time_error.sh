@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# adaptivity.measure_time_error against a known answer: manufactured poly_space lies in
+# Q2 in space, so with p = 2 the goal error of the run is temporal only (to the spatial
+# solver's accuracy) and the extrapolated err_time_<goal> must equal err_<goal>, with
+# the observed order 2r + 1 of dG(r) at the end point (goal u_center_T), for r = 0, 1, 2
+# and SUPG on (the check keeps delta_K fixed over its three time meshes).
+source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
+
+for r in 0 1 2; do
+  out="$tmp/r$r"
+  "$bin" run "$src/config/manufactured.json" --set scene.variant=poly_space \
+    --set discretization.p=2 --set discretization.r=$r --set discretization.delta0=1 \
+    --set discretization.n_slabs=16 --set study.mode=dwr --set adaptivity.loops=1 \
+    --set adaptivity.theta_tau=0 --set adaptivity.measure_time_error=true \
+    --set output.vtu_loops=0 --output "$out" >/dev/null 2>&1 ||
+    { echo "FAIL: r = $r: the run failed"; fail=1; continue; }
+  /usr/bin/python3 - "$out/loops.csv" "$r" <<'PY' || fail=1
+import csv, sys
+row = list(csv.DictReader(open(sys.argv[1])))[-1]
+r = int(sys.argv[2])
+err, measured = float(row["err_u_center_T"]), float(row["err_time_u_center_T"])
+order = float(row["err_tau_order"])
+ok = abs(measured - err) <= 0.02 * abs(err) and abs(order - (2 * r + 1)) <= 0.15
+print(("ok" if ok else "FAIL") + f": dG({r}): J error {err:.6e}, measured temporal error "
+      f"{measured:.6e} (ratio {measured / err:.4f}, want within 2%), order {order:.3f} "
+      f"(want {2 * r + 1} +- 0.15)")
+sys.exit(0 if ok else 1)
+PY
+done
+exit $fail
