@@ -75,62 +75,55 @@ TEST(Mollifier, IntegratesToOne)
     }
 }
 
+namespace
+{
+/// j(f) - f(c) for the mollified point goal (center c, radius s) on a cells[0] x
+/// cells[1] mesh of the unit square with Q_p and a linear f: the mollifier is radially
+/// symmetric, so j(f) = f(c), and Q_p holds f exactly.
+double mollified_linear_error(const std::array<unsigned int, 2> &cells, unsigned int p,
+                              const Point<2> &c, double s)
+{
+  const auto scene = manufactured();
+  const auto f = [](const Point<2> &x) { return 1. + 2. * x[0] - 3. * x[1]; };
+  Triangulation<2> tria;
+  GridGenerator::subdivided_hyper_rectangle(tria, {cells[0], cells[1]}, Point<2>(0., 0.),
+                                            Point<2>(1., 1.));
+  Space<2> space(*scene, tria, p, 0.);
+  space.setup();
+  GoalSpec g;
+  g.center = {c[0], c[1]};
+  g.radius = s;
+  Vector<double> j, fh(space.n_dofs());
+  assemble_goal_vector(space, g, j);
+  VectorTools::interpolate(space.mapping(), space.dof_handler(),
+                           ScalarFunctionFromFunctionObject<2>(f), fh);
+  return j * fh - f(c);
+}
+} // namespace
+
 TEST(Mollifier, ThinCellsIntegrateLinearFunctionsExactly)
 {
   // Cells of aspect ratio 64 and 1/64 around the goal (each cut along its own length
-  // only, s/16 per sub-cell in each direction) and square cells: the mollifier is
-  // radially symmetric, so j(f) = f(c) for every linear f, and Q_p holds f exactly.
-  const auto scene = manufactured();
-  const auto f = [](const Point<2> &x) { return 1. + 2. * x[0] - 3. * x[1]; };
+  // only, s/16 per sub-cell in each direction) and square cells.
   for (const std::array<unsigned int, 2> cells :
        {std::array<unsigned int, 2>{{4, 256}}, {{256, 4}}, {{32, 32}}})
     for (unsigned int p : {1u, 2u})
-    {
-      Triangulation<2> tria;
-      GridGenerator::subdivided_hyper_rectangle(
-          tria, {cells[0], cells[1]}, Point<2>(0., 0.), Point<2>(1., 1.));
-      Space<2> space(*scene, tria, p, 0.);
-      space.setup();
-      GoalSpec g;
-      g.center = {0.45, 0.52};
-      g.radius = 0.05;
-      Vector<double> j, fh(space.n_dofs());
-      assemble_goal_vector(space, g, j);
-      VectorTools::interpolate(space.mapping(), space.dof_handler(),
-                               ScalarFunctionFromFunctionObject<2>(f), fh);
-      EXPECT_NEAR(j * fh, f(Point<2>(0.45, 0.52)), 1e-9)
+      EXPECT_NEAR(mollified_linear_error(cells, p, Point<2>(0.45, 0.52), 0.05), 0., 1e-9)
           << cells[0] << " x " << cells[1] << " cells, p = " << p;
-    }
 }
 
 TEST(Mollifier, LargeCellsIntegrateLinearFunctionsExactly)
 {
   // Cells 25-100 times wider than the support (s = 0.01): the rule is restricted to the
-  // part of the cell that holds the support, s/16 per sub-cell. A goal inside one
-  // cell and one on a vertex shared by four cells; j(f) = f(c) for linear f.
-  const auto scene = manufactured();
-  const auto f = [](const Point<2> &x) { return 1. + 2. * x[0] - 3. * x[1]; };
+  // part of the cell that holds the support, s/32 per sub-cell. A goal inside one
+  // cell and one on a vertex shared by four cells.
   for (const auto &[cells, center] :
        {std::pair<std::array<unsigned int, 2>, Point<2>>{{{1, 1}}, Point<2>(0.45, 0.52)},
         {{{2, 2}}, Point<2>(0.497, 0.504)},
         {{{3, 2}}, Point<2>(0.61, 0.2)}})
     for (unsigned int p : {1u, 2u})
-    {
-      Triangulation<2> tria;
-      GridGenerator::subdivided_hyper_rectangle(
-          tria, {cells[0], cells[1]}, Point<2>(0., 0.), Point<2>(1., 1.));
-      Space<2> space(*scene, tria, p, 0.);
-      space.setup();
-      GoalSpec g;
-      g.center = {center[0], center[1]};
-      g.radius = 0.01;
-      Vector<double> j, fh(space.n_dofs());
-      assemble_goal_vector(space, g, j);
-      VectorTools::interpolate(space.mapping(), space.dof_handler(),
-                               ScalarFunctionFromFunctionObject<2>(f), fh);
-      EXPECT_NEAR(j * fh, f(center), 1e-9)
+      EXPECT_NEAR(mollified_linear_error(cells, p, center, 0.01), 0., 1e-9)
           << cells[0] << " x " << cells[1] << " cells, p = " << p;
-    }
 }
 
 TEST(Adjoint, TransposedSpaceTimeOperator)
