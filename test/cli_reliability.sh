@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Reliability of the command line: goals checked against the domain, malformed config
 # files, the output directory lock, atomic summary.json with status interrupted,
-# one-line solver failures and out of memory. Every run is limited to 20 s.
+# one-line solver failures, out of memory and a blow-up of the discretization. Every
+# run is limited to 20 s (the blow-up: 60 s).
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
 cfg=$src/config/moving_hump.json
 hemker=$src/config/hemker.json
@@ -96,5 +97,18 @@ if [ -e "$d/loop-0009.vtu" ] || [ ! -e "$d/notes.txt" ] || [ -e "$d/summary.json
   fail=1
 else
   echo "ok: files of the previous run removed, other files kept"
+fi
+
+# a blow-up (slabs shorter than delta_K without the bound delta_K <= tau_n) stops the run
+# with exit 3, naming the loop and slab, and the loops before it stay on disk
+d=$tmp/blowup
+expect_timeout=60
+expect 3 "loop 10, primal slab [0-9]*/210 .*grew to .*discretization.growth_limit" -- \
+  run "$src/config/moving_hump_paper.json" --output "$d" --set adaptivity.loops=12 \
+  --set discretization.supg_tau_factor=0 --set adaptivity.space_indicator=primal_residual \
+  --set adaptivity.adjoint_delta0=0.1
+if [ "$(($(wc -l <"$d/loops.csv") - 1))" != 9 ] || ! grep -q '"status": "failed: loop 10' "$d/summary.json"; then
+  echo "FAIL: blow-up: loops.csv should keep loops 1-9 and summary.json say failed at loop 10"
+  fail=1
 fi
 exit $fail

@@ -138,6 +138,12 @@ std::vector<Entry> discretization_entries()
        "Bound delta_K <= supg_tau_factor * tau_n on each slab (tau_n its length), the "
        "stability condition of SUPG whose test function also multiplies du/dt; 0 drops "
        "the bound (small slabs on strongly anisotropic meshes then blow up)."},
+      {"discretization", "growth_limit", "1e4", m(&S::growth_limit), real(0.),
+       "Blow-up check of the primal march: a slab solution whose largest coefficient "
+       "exceeds growth_limit times the data bound max|u_0| + max|g| + int_0^T max|f| dt "
+       "(the maximum-principle bound, sampled on a 33 x 33 grid over the domain and on the "
+       "Dirichlet boundary's vertices) stops the run as a numerical failure naming the "
+       "loop and slab (exit 3); 0 = off."},
       {"discretization", "initial_refinements", "2", m(&S::initial_refinements),
        integer(0, 14),
        "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},

@@ -82,6 +82,7 @@ struct DiscretizationSection
   double delta0 = 1.0;
   SupgLength supg_length = SupgLength::volume;
   double supg_tau_factor = 1.;
+  double growth_limit = 1e4;
   unsigned int initial_refinements = 2;
   unsigned int n_slabs = 5;
 };

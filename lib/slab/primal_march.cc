@@ -29,7 +29,8 @@ void assemble_slab_load(const Space<dim> &space, const TemporalBasis &basis, dou
 
 void guarded_slab_solve(const MarchOptions &options, const std::string &kind,
                         unsigned int n, const TimeMesh &mesh,
-                        const std::function<void()> &solve, const Vector<double> &result)
+                        const std::function<void()> &solve, const Vector<double> &result,
+                        double bound)
 {
   std::ostringstream name;
   name << options.label << ", " << kind << " slab " << n + 1 << "/" << mesh.n_slabs()
@@ -75,8 +76,52 @@ void guarded_slab_solve(const MarchOptions &options, const std::string &kind,
   }
   if (!std::isfinite(result.l2_norm()))
     throw NumericalError(name.str() + ": " + kind + " solution contains NaN/Inf");
+  if (bound > 0 && result.linfty_norm() > bound)
+  {
+    std::ostringstream what;
+    what << name.str() << ": " << kind << " solution grew to " << result.linfty_norm()
+         << ", more than discretization.growth_limit = " << options.growth_limit
+         << " times the data bound " << bound / options.growth_limit
+         << " (max|u_0| + max|g| + int max|f| dt): the discretization is unstable (e.g. "
+            "slabs shorter than delta_K with discretization.supg_tau_factor = 0)";
+    throw NumericalError(what.str());
+  }
   if (options.progress)
     std::cout << "  [" << name.str() << "] |U| = " << result.l2_norm() << std::endl;
+}
+
+template <int dim> double data_bound(const Space<dim> &space, const TimeMesh &mesh)
+{
+  const Scene<dim> &scene = space.scene;
+  const auto box = scene.bounding_box();
+  constexpr unsigned int k = 32;
+  std::vector<Point<dim>> grid;
+  static_assert(dim == 2, "data_bound: 2d grid");
+  for (unsigned int i = 0; i <= k; ++i)
+    for (unsigned int j = 0; j <= k; ++j)
+    {
+      const Point<dim> x(box[0][0] + (box[1][0] - box[0][0]) * i / k,
+                         box[0][1] + (box[1][1] - box[0][1]) * j / k);
+      if (scene.contains(x))
+        grid.push_back(x);
+    }
+  double u0 = 0, g = 0, f = 0;
+  for (const auto &x : grid)
+    u0 = std::max(u0, std::abs(scene.initial_value(x)));
+  for (const auto &cell : space.dof_handler().active_cell_iterators())
+    for (const auto &face : cell->face_iterators())
+      if (face->at_boundary() && scene.dirichlet_ids.count(face->boundary_id()))
+        for (unsigned int v = 0; v < face->n_vertices(); ++v)
+          for (unsigned int n = 0; n <= mesh.n_slabs(); ++n)
+            g = std::max(g, std::abs(scene.dirichlet_value(face->vertex(v), mesh.t[n])));
+  for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+  {
+    double fn = 0;
+    for (const auto &x : grid)
+      fn = std::max(fn, std::abs(scene.rhs(x, mesh.start(n) + 0.5 * mesh.tau(n))));
+    f += mesh.tau(n) * fn;
+  }
+  return std::max(1., u0 + g + f);
 }
 
 template <int dim>
@@ -84,6 +129,8 @@ std::vector<Vector<double>>
 march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,
              SlabOperator<dim> &op, const MarchOptions &options)
 {
+  const double bound =
+      options.growth_limit > 0 ? options.growth_limit * data_bound(space, mesh) : 0.;
   std::vector<Vector<double>> U(mesh.n_slabs());
   Vector<double> coupling, last, load;
   space.assemble_initial(mesh.tau(0), coupling); // (u_0, phi + delta b.grad phi)
@@ -104,7 +151,7 @@ march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis 
           add_kron_vector(1., basis.left_trace(), coupling, load);
           op.solve(load, U[n]);
         },
-        U[n]);
+        U[n], bound);
   }
   return U;
 }
@@ -113,6 +160,7 @@ template std::vector<Vector<double>> march_primal<2>(const Space<2> &, const Tim
                                                      const TemporalBasis &,
                                                      SlabOperator<2> &,
                                                      const MarchOptions &);
+template double data_bound<2>(const Space<2> &, const TimeMesh &);
 template void assemble_slab_load<2>(const Space<2> &, const TemporalBasis &, double,
                                     double, Vector<double> &);
 } // namespace anisodwr

@@ -14,18 +14,30 @@ struct MarchOptions
 {
   std::string label = "run"; ///< names the loop/level in progress lines and errors
   bool progress = false;
+  /// discretization.growth_limit: the primal march fails when a slab solution's largest
+  /// coefficient exceeds growth_limit * data_bound (0 = no check)
+  double growth_limit = 0;
 };
 
 /// Runs `solve` for slab n (0-based) of `mesh`; any exception becomes a NumericalError
 /// naming options.label, `kind` (primal/adjoint), the slab and its time interval, and
-/// so does a non-finite `result` afterwards. Prints a progress line if asked.
+/// so does a non-finite `result` afterwards, or one whose largest entry exceeds `bound`
+/// (if bound > 0). Prints a progress line if asked.
 void guarded_slab_solve(const MarchOptions &options, const std::string &kind,
                         unsigned int n, const TimeMesh &mesh,
                         const std::function<void()> &solve,
-                        const dealii::Vector<double> &result);
+                        const dealii::Vector<double> &result, double bound = 0);
+
+/// max(1, max|u_0| + max|g| + sum_n tau_n max|f(t_n + tau_n/2)|): the bound of the
+/// maximum principle on |u|, with u_0 and f sampled on a 33 x 33 grid over the scene's
+/// bounding box (points inside the domain) and g on the Dirichlet boundary's vertices
+/// at the slab ends. A stable discretization stays within a modest factor of it
+/// (SUPG's over- and undershoots); a blow-up exceeds it by orders of magnitude.
+template <int dim> double data_bound(const Space<dim> &space, const TimeMesh &mesh);
 
 /// Returns one interleaved coefficient vector per slab. Throws NumericalError naming
-/// the label and slab on solver failure or non-finite values.
+/// the label and slab on solver failure, non-finite values or (options.growth_limit >
+/// 0) a slab solution larger than growth_limit * data_bound.
 template <int dim>
 std::vector<dealii::Vector<double>>
 march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,

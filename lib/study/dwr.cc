@@ -359,6 +359,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   MarchOptions opt;
   opt.label = "loop " + std::to_string(row.loop);
   opt.progress = false;
+  opt.growth_limit = prm.discretization.growth_limit;
   std::vector<Vector<double>> U, U_hi;
   const TemporalBasis basis_hi(prm.discretization.r + 1); // time_indicator = higher_order
   AdjointMarch adj;

@@ -93,6 +93,7 @@ LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned i
   opt.label =
       prm.study.mode == StudyMode::convergence ? "level " + std::to_string(level) : "run";
   opt.progress = prm.output.progress;
+  opt.growth_limit = prm.discretization.growth_limit;
   const auto U = march_primal(space, mesh, basis, op, opt);
   res.t_total = timer.wall_time();
   res.slab = op.timings();
