@@ -149,9 +149,10 @@ template <int dim> struct LocalGoal<dim>::Part
   /// The rule for a cell much larger than the mollifier's support: the iterated Gauss
   /// rule restricted to the box of unit coordinates that holds the support (the
   /// preimage of the circle |x - c| = s, sampled at 64 points, widened by 2% and
-  /// clipped to the unit cell), with sub-cells at most s/32 wide (at most 64 along a
-  /// direction: the support spans 2 s; finer than s/16 because the support is cut by
-  /// cell edges here, where the composite rule loses the bump's smooth end). Returns
+  /// clipped to the unit cell), with sub-cells at most s/32 wide (a power of two, at
+  /// most 128 along a direction: the widened support spans 2.04 s; finer than s/16
+  /// because the support is cut by cell edges here, where the composite rule loses the
+  /// bump's smooth end). Returns
   /// false if that
   /// box is empty (the support misses the cell) or a sample point cannot be mapped
   /// back; then `rule` is left untouched.
