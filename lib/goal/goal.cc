@@ -194,7 +194,7 @@ template <int dim> struct LocalGoal<dim>::Part
         return true;
       }
       unsigned int m = 1;
-      while (m < 64 && m * goal.radius < 32. * (hi_d - lo_d) * edge_length(cell, d))
+      while (m < 1024 && m * goal.radius < 32. * (hi_d - lo_d) * edge_length(cell, d))
         m *= 2;
       const QIterated<1> unit(base, m);
       std::vector<Point<1>> points(unit.size());
