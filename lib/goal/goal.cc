@@ -152,10 +152,9 @@ template <int dim> struct LocalGoal<dim>::Part
   /// clipped to the unit cell), with sub-cells at most s/32 wide (a power of two, at
   /// most 128 along a direction: the widened support spans 2.04 s; finer than s/16
   /// because the support is cut by cell edges here, where the composite rule loses the
-  /// bump's smooth end). Returns
-  /// false if that
-  /// box is empty (the support misses the cell) or a sample point cannot be mapped
-  /// back; then `rule` is left untouched.
+  /// bump's smooth end). Returns false if a sample point cannot be mapped back (then
+  /// `rule` is left untouched); true otherwise, with `empty` set if that box is empty
+  /// (the support misses the cell) and `rule` set if not.
   bool clipped_rule(const typename Triangulation<dim>::active_cell_iterator &cell,
                     const Mapping<dim> &mapping, const FiniteElement<dim> &fe,
                     std::unique_ptr<FEValues<dim>> &rule, bool &empty) const

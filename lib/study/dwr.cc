@@ -57,17 +57,10 @@ double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &m
   return evaluate_goal(assemble_goal_vectors(space, {unweighted(goal)}), mesh, basis, U);
 }
 
-/// The temporal part of the goal error on the current spatial mesh, measured (row.err_tau,
-/// err_tau_order for the weighted goal, err_tau_goal per goal unweighted): the
-/// primal is solved on the time mesh, bisected once and bisected twice, all three with
-/// the SUPG parameters of the twice-bisected mesh (delta_K <= supg_tau_factor * tau_n / 4,
-/// built by `space(s)` with the bound scaled by s = 1/4, 1/2, 1): delta_K bounded by the
-/// slab length is what keeps small slabs stable, so that only the time mesh changes
-/// between the three and not the spatial discretization. With d1 = J(2N) - J(N),
-/// d2 = J(4N) - J(2N) and the observed order k = log2(d1 / d2),
-/// J(inf) - J(N) = d1 + d2 2^k / (2^k - 1) (Richardson).
-/// J(inf) - J(N) from J(N), J(2N), J(4N) and the observed order k, or NaN, NaN when
-/// the differences do not contract (k <= 1/2).
+/// J(inf) - J(N) from J(N), J(2N), J(4N) and the observed order k (Richardson): with
+/// d1 = J(2N) - J(N), d2 = J(4N) - J(2N), k = log2(d1 / d2),
+/// J(inf) - J(N) = d1 + d2 2^k / (2^k - 1); NaN, NaN when the differences do not
+/// contract (k <= 1/2).
 std::pair<double, double> richardson(const std::array<double, 3> &J)
 {
   const double d1 = J[1] - J[0], d2 = J[2] - J[1];
@@ -78,6 +71,13 @@ std::pair<double, double> richardson(const std::array<double, 3> &J)
   return {d1 + d2 * std::pow(2., k) / (std::pow(2., k) - 1.), k};
 }
 
+/// The temporal part of the goal error on the current spatial mesh, measured (row.err_tau,
+/// err_tau_order for the weighted goal, err_tau_goal per goal unweighted): the primal
+/// is solved on the time mesh, bisected once and bisected twice, all three with the
+/// SUPG parameters of the twice-bisected mesh (delta_K <= supg_tau_factor * tau_n / 4,
+/// built by `space(s)` with the bound scaled by s = 1/4, 1/2, 1): delta_K bounded by the
+/// slab length is what keeps small slabs stable, so that only the time mesh changes
+/// between the three and not the spatial discretization; then richardson().
 void measure_time_error(const std::function<std::unique_ptr<Space<2>>(double)> &space,
                         const TimeMesh &mesh, const TemporalBasis &basis,
                         const SlabSolverOptions &solver, const std::vector<GoalSpec> &goals,
@@ -95,9 +95,12 @@ void measure_time_error(const std::function<std::unique_ptr<Space<2>>(double)> &
     const auto primal = space(std::pow(2., level) / 4.);
     SlabOperator<2> op(*primal, basis, solver);
     const auto U = march_primal(*primal, m, basis, op, opt);
-    J[0][level] = evaluate_goal(assemble_goal_vectors(*primal, goals), m, basis, U);
+    J[0][level] = 0; // J_w = sum_i w_i J_i, as weigh_goals forms row.J
     for (std::size_t i = 0; i < goals.size(); ++i)
+    {
       J[1 + i][level] = goal_value(*primal, goals[i], m, basis, U);
+      J[0][level] += goals[i].weight * J[1 + i][level];
+    }
   }
   std::cout << "  " << opt.label << ": temporal error check, J_w with " << mesh.n_slabs()
             << ", " << 2 * mesh.n_slabs() << ", " << 4 * mesh.n_slabs()

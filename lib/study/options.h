@@ -34,8 +34,8 @@ MarkingOptions marking_options(const Parameters &prm);
 
 /// The FE_Q(degree) space of a run on `tria`, set up: SUPG from the discretization
 /// section, DoFs numbered as solver.dof_numbering says. tau_scale multiplies
-/// supg_tau_factor: on slabs bisected k times, tau_scale = 2^k keeps every delta_K of
-/// the unbisected slabs.
+/// supg_tau_factor (the bound delta_K <= supg_tau_factor * tau_n): the temporal error
+/// check gives its three time meshes the bound of the finest with 1/4, 1/2, 1.
 std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
                                      const dealii::Triangulation<2, 2> &tria,
                                      unsigned int degree, double tau_scale = 1.);
