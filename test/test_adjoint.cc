@@ -1,6 +1,7 @@
 // Goal functionals and the adjoint march (doc/method.md §4-5): the mollifier integrates
 // to 1, the transposed space-time operator is the transpose, and with q = p the goal
 // value J(u_h) = <J, U> equals the adjoint form <F, Z>.
+#include "adaptivity/lifted_goal.h"
 #include "config/parameters.h"
 #include "goal/goal.h"
 #include "slab/adjoint_march.h"
@@ -124,6 +125,57 @@ TEST(Mollifier, LargeCellsIntegrateLinearFunctionsExactly)
     for (unsigned int p : {1u, 2u})
       EXPECT_NEAR(mollified_linear_error(cells, p, center, 0.01), 0., 1e-9)
           << cells[0] << " x " << cells[1] << " cells, p = " << p;
+}
+
+// goal.weights = auto takes each goal's sign from d = J(I_2h u_h) - J(u_h). On cells
+// without a patch the lift is u_h itself, so d is rounding noise whose sign depends on
+// the summation order; such a goal must get the weight +1/|J|, while a goal whose lift
+// does see a difference keeps the sign of d.
+TEST(AutoWeights, UnseenLiftDifferenceGivesPositiveWeight)
+{
+  const auto scene = manufactured();
+  const TemporalBasis basis(1);
+  const TimeMesh mesh = TimeMesh::uniform(0.5, 3);
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> dist(0.5, 1.5);
+  for (const bool patches : {false, true})
+  {
+    Triangulation<2> tria;
+    if (patches)
+      make_mesh(*scene, tria);
+    else
+      GridGenerator::hyper_cube(tria); // one cell: no sibling, no neighbour, no patch
+    Space<2> space(*scene, tria, 1, 1.0);
+    space.setup();
+    std::vector<Vector<double>> U(mesh.n_slabs(),
+                                  Vector<double>(space.n_dofs() * basis.n_dofs()));
+    for (auto &x : U)
+      for (auto &e : x)
+        e = dist(gen);
+    for (const GoalSpec &g : goals())
+    {
+      const double J = evaluate_goal(assemble_goal_vectors(space, {unweighted(g)}), mesh,
+                                     basis, U);
+      const double d = lift_difference(space, g, mesh, basis, U);
+      const double w = signed_goal_weight(d, J, auto_weight_unseen);
+      if (!patches || (g.kind == GoalKind::point && g.radius == 0))
+      {
+        // No patch (on the refined mesh the Dirac's cell lost its patch when its
+        // sibling was cut in x): the lift changes nothing.
+        EXPECT_EQ(d, 0.) << g.name;
+        EXPECT_DOUBLE_EQ(w, 1 / std::abs(J)) << g.name;
+        for (const double noise : {-1e-10, 1e-10})
+          EXPECT_DOUBLE_EQ(signed_goal_weight(noise * J, J, auto_weight_unseen),
+                           1 / std::abs(J));
+      }
+      else
+      {
+        EXPECT_GT(std::abs(d), 1e-6 * std::abs(J)) << g.name;
+        EXPECT_DOUBLE_EQ(w, (d > 0 ? 1 : -1) / std::abs(J)) << g.name;
+      }
+    }
+  }
+  EXPECT_DOUBLE_EQ(signed_goal_weight(-1e-3, -2., auto_weight_unseen), -0.5);
 }
 
 TEST(Adjoint, TransposedSpaceTimeOperator)

@@ -7,8 +7,8 @@ namespace anisodwr
 {
 using namespace dealii;
 
-double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh &mesh,
-                   const TemporalBasis &basis, const std::vector<Vector<double>> &U)
+double lift_difference(const Space<2> &primal, const GoalSpec &goal,
+                       const TimeMesh &mesh, const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
   const SpatialOperators<2> ops(primal.dof_handler(), 2 * primal.degree());
   const GoalSpec g = unweighted(goal);
@@ -18,28 +18,29 @@ double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh 
   const unsigned int m1 = basis.n_dofs(), N = mesh.n_slabs();
   std::vector<double> gp, gw;
   gauss_rule(m1 + 1, gp, gw);
-  std::vector<types::global_dof_index> idx(primal.finite_element().n_dofs_per_cell());
-  double J = 0;
-  Vector<double> j, v;
+  double d = 0;
+  Vector<double> j, v, u;
   for (const auto &cell : primal.dof_handler().active_cell_iterators())
   {
     if (!local.cell_vector(cell, j))
       continue;
-    LocalMap lift = ops.patch_lift(cell);
-    if (!lift.exists) // no patch: the lift is u itself
-    {
-      cell->get_dof_indices(idx);
-      lift.exists = true;
-      lift.dofs = idx;
-      lift.matrix = P;
-    }
+    const LocalMap lift = ops.patch_lift(cell);
+    if (!lift.exists) // no patch: the lift is u_h itself
+      continue;
+    LocalMap own;
+    own.dofs.resize(primal.finite_element().n_dofs_per_cell());
+    cell->get_dof_indices(own.dofs);
+    own.exists = true;
+    own.matrix = P;
     auto node_value = [&](unsigned int n, unsigned int k)
     {
       lift.apply(U[n], v, m1, k);
+      own.apply(U[n], u, m1, k);
+      v -= u;
       return j * v;
     };
     if (!g.over_time)
-      J += node_value(N - 1, m1 - 1);
+      d += node_value(N - 1, m1 - 1);
     else
       for (unsigned int n = 0; n < N; ++n)
         for (unsigned int k = 0; k < m1; ++k)
@@ -47,9 +48,9 @@ double lifted_goal(const Space<2> &primal, const GoalSpec &goal, const TimeMesh 
           double w = 0;
           for (unsigned int m = 0; m < gp.size(); ++m)
             w += gw[m] * basis.value(k, gp[m]);
-          J += mesh.tau(n) * w * node_value(n, k);
+          d += mesh.tau(n) * w * node_value(n, k);
         }
   }
-  return J;
+  return d;
 }
 } // namespace anisodwr

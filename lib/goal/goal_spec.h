@@ -2,6 +2,8 @@
 // The description of one goal functional (doc/method.md §4), as read from the config.
 #include "base/choice.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -40,4 +42,18 @@ inline GoalSpec unweighted(const GoalSpec &goal)
   g.weight = 1;
   return g;
 }
+/// The weight of a goal with value J whose error is taken to have the sign of s
+/// (goal.weights = auto: s = J(I_2h u_h) - J(u_h); estimate: s = the goal's own
+/// estimate): sign(s) / max(|J|, 1e-12). Where |s| <= `unseen` * |J| the error is not
+/// seen (for `auto`: the goal's support lies on cells without a patch, where the lift
+/// is u_h itself and s is rounding noise), and the weight is +1 / |J|, so that it does
+/// not depend on the summation order.
+inline double signed_goal_weight(double s, double J, double unseen = 0)
+{
+  const double a = std::max(std::abs(J), 1e-12);
+  return (std::abs(s) <= unseen * a || s >= 0 ? 1. : -1.) / a;
+}
+
+/// Relative size below which the lift difference of goal.weights = auto counts as zero.
+constexpr double auto_weight_unseen = 1e-8;
 } // namespace anisodwr

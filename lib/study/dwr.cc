@@ -44,13 +44,6 @@ std::string num(double v)
   return json_number(v, 12);
 }
 
-/// sign(s) / max(|J|, 1e-12): the weight of a goal with value J whose error is taken
-/// to have the sign of s (goal.weights = auto or estimate).
-double sign_weight(double s, double J)
-{
-  return (s >= 0 ? 1. : -1.) / std::max(std::abs(J), 1e-12);
-}
-
 double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &mesh,
                   const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
@@ -495,7 +488,7 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
     const auto part = goal_estimate(primal, adjoint, U, Z[i], goals[i], hi);
     Z[i] = {};
     add_goal_estimate(row, part);
-    goals[i].weight = sign_weight(row.eta_goal[i], row.J_goal[i]);
+    goals[i].weight = signed_goal_weight(row.eta_goal[i], row.J_goal[i]);
     add_scaled(ind, goals[i].weight, part);
   }
   weigh_goals(row);
@@ -585,8 +578,8 @@ void AdaptiveLoop::evaluate_goals(LoopRow &row, const Space<2> &primal,
     row.J_goal_exact.push_back(J_exact[g]);
     if (auto_weights)
     {
-      const double d = lifted_goal(primal, goals[g], mesh, basis, U) - row.J_goal[g];
-      goals[g].weight = sign_weight(d, row.J_goal[g]);
+      const double d = lift_difference(primal, goals[g], mesh, basis, U);
+      goals[g].weight = signed_goal_weight(d, row.J_goal[g], auto_weight_unseen);
     }
   }
   if (!estimate_weights)
