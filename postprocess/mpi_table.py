@@ -6,20 +6,22 @@ OUT holds one directory per config (hemker, moving_hump_paper, ...), each with o
 directory per variant (umfpack, umfpack_1thread, mumps, mpi2, ...) holding a run's
 loops.csv. Prints, per config, whether every variant has the serial run's N_space, N_t
 and J (1e-8 relative) on every loop, and a Markdown table of the last loop: phase
-times (s), the loop's sum, rank 0's peak memory (MB) and the speed-up against the
-serial default (umfpack). With CHART, draws the phase times as stacked bars.
+times (s), the loop's sum, the largest peak memory over the ranks (MB) and the speed-up
+against the serial default (umfpack) and against one single-threaded process. With
+CHART, draws the phase times as stacked bars.
 """
 import csv
 import os
 import sys
 
 PHASES = ["t_primal", "t_adjoint", "t_estimate", "t_refine"]
-ORDER = ["umfpack_1thread", "umfpack", "mumps", "mpi2", "mpi4"]
+ORDER = ["umfpack_1thread", "umfpack", "mumps", "mpi2", "mpi2_umfpack", "mpi4"]
 LABEL = {
     "umfpack_1thread": "1 process, 1 thread, UMFPACK",
     "umfpack": "1 process, 2 threads, UMFPACK",
     "mumps": "1 process, 2 threads, MUMPS",
     "mpi2": "2 ranks x 1 thread, MUMPS",
+    "mpi2_umfpack": "2 ranks x 1 thread, UMFPACK on each rank",
     "mpi4": "4 ranks, MUMPS",
 }
 
@@ -49,16 +51,19 @@ def main():
         last = ref[-1]
         print(f"\n{config}, loop {last['loop']}: N_space {last['N_space']}, N_t {last['N_t']}, "
               f"N_tot {last['N_tot']}\n")
-        print("| variant | primal s | adjoint s | estimate s | refine s | loop s | peak MB (rank 0) | speed-up |")
-        print("|---|---|---|---|---|---|---|---|")
+        print("| variant | primal s | adjoint s | estimate s | refine s | loop s | peak MB (largest rank) | speed-up | against 1 thread |")
+        print("|---|---|---|---|---|---|---|---|---|")
         base = sum(float(last[p]) for p in PHASES)
+        one = runs.get("umfpack_1thread", ref)[-1]
+        base1 = sum(float(one[p]) for p in PHASES)
         for v in ORDER:
             if v not in runs:
                 continue
             row = runs[v][-1]
             t = [float(row[p]) for p in PHASES]
             print(f"| {LABEL[v]} | " + " | ".join(f"{x:.2f}" for x in t) +
-                  f" | {sum(t):.2f} | {float(row['mem_peak']):.0f} | {base / sum(t):.2f} |")
+                  f" | {sum(t):.2f} | {float(row['mem_peak']):.0f} | {base / sum(t):.2f}"
+                  f" | {base1 / sum(t):.2f} |")
             bars.append((f"{config}\n{v}", t))
         print()
     if chart and bars:

@@ -4,6 +4,8 @@
 #   umfpack          1 process, all cores (the serial default)
 #   mumps            1 process, all cores, solver.direct = mumps
 #   mpiN             mpirun -np N (MUMPS; cores shared out between the ranks)
+#   mpiN_umfpack     mpirun -np N with solver.direct = umfpack (every rank factorizes
+#                    and solves the whole slab system itself; only the estimator is shared)
 #   scripts/bench_mpi.sh CONFIG LOOPS [--set key=value ...]
 # then postprocess/mpi_table.py OUT: whether all variants reproduce the serial loops
 # (N_space, N_t, J), and the last loop's phase times, rank 0's peak memory and the
@@ -24,4 +26,6 @@ DEAL_II_NUM_THREADS=1 "$BIN" "${common[@]}" --output "$OUT/umfpack_1thread" >/de
 "$BIN" "${common[@]}" --set solver.direct=mumps --output "$OUT/mumps" >/dev/null
 mpirun --allow-run-as-root --oversubscribe -np "$RANKS" "$BIN" "${common[@]}" \
   --output "$OUT/mpi$RANKS" >/dev/null
+mpirun --allow-run-as-root --oversubscribe -np "$RANKS" "$BIN" "${common[@]}" \
+  --set solver.direct=umfpack --output "$OUT/mpi${RANKS}_umfpack" >/dev/null
 /usr/bin/python3 "$ROOT/postprocess/mpi_table.py" "$BASE" ${CHART:+"$CHART"}

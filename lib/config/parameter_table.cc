@@ -289,8 +289,9 @@ std::vector<Entry> goal_entries()
        "a number >= 0 (and at most the diameter of the scene's domain)"},
       {"goal", "weights", "1", m(&S::weights), text,
        "Weights w_i of J_w = sum w_i J_i: one number for all goals, a comma list (one "
-       "per "
-       "goal), auto (w_i = sign(J_i(I_2h u) - J_i(u_h)) / max(|J_i(u_h)|, 1e-12)) or "
+       "per goal), auto (w_i = sign(J_i(I_2h u) - J_i(u_h)) / max(|J_i(u_h)|, 1e-12); "
+       "+1 / |J_i(u_h)| where |J_i(I_2h u) - J_i(u_h)| <= 1e-8 |J_i(u_h)|, the lift not "
+       "seeing the goal) or "
        "estimate (w_i = sign(eta_i) / max(|J_i(u_h)|, 1e-12), eta_i from each goal's own "
        "adjoint: one adjoint march per goal with one factorization, one estimate per "
        "goal; the indicators of J_w are sum_i w_i times goal i's, so the goals' "
