@@ -5,10 +5,11 @@ Usage: mpi_table.py OUT [CHART.png]
 OUT holds one directory per config (hemker, moving_hump_paper, ...), each with one
 directory per variant (umfpack, umfpack_1thread, mumps, mpi2, ...) holding a run's
 loops.csv. Prints, per config, whether every variant has the serial run's N_space, N_t
-and J (1e-8 relative) on every loop, and a Markdown table of the last loop: phase
-times (s), the loop's sum, the largest peak memory over the ranks (MB) and the speed-up
-against the serial default (umfpack) and against one single-threaded process. With
-CHART, draws the phase times as stacked bars.
+and J (1e-8 relative) on every loop, and Markdown tables of the last loop and of the
+loop four before it (two sizes): phase times (s), the loop's sum, the largest peak
+memory over the ranks up to that loop (MB) and the speed-up against the serial default
+(umfpack) and against one single-threaded process. With CHART, draws the last loop's
+phase times as stacked bars.
 """
 import csv
 import os
@@ -48,23 +49,27 @@ def main():
                 for x, y in zip(ref, rows))
             if v != "umfpack":
                 print(f"{config}, {v}: same N_space, N_t, J as umfpack on all {len(ref)} loops: {same}")
-        last = ref[-1]
-        print(f"\n{config}, loop {last['loop']}: N_space {last['N_space']}, N_t {last['N_t']}, "
-              f"N_tot {last['N_tot']}\n")
-        print("| variant | primal s | adjoint s | estimate s | refine s | loop s | peak MB (largest rank) | speed-up | against 1 thread |")
-        print("|---|---|---|---|---|---|---|---|---|")
-        base = sum(float(last[p]) for p in PHASES)
-        one = runs.get("umfpack_1thread", ref)[-1]
-        base1 = sum(float(one[p]) for p in PHASES)
-        for v in ORDER:
-            if v not in runs:
-                continue
-            row = runs[v][-1]
-            t = [float(row[p]) for p in PHASES]
-            print(f"| {LABEL[v]} | " + " | ".join(f"{x:.2f}" for x in t) +
-                  f" | {sum(t):.2f} | {float(row['mem_peak']):.0f} | {base / sum(t):.2f}"
-                  f" | {base1 / sum(t):.2f} |")
-            bars.append((f"{config}\n{v}", t))
+        # two sizes: the last loop and the loop four before it (N_tot about 5x smaller)
+        for k in ([len(ref) - 5] if len(ref) > 5 else []) + [len(ref) - 1]:
+            at = ref[k]
+            print(f"\n{config}, loop {at['loop']}: N_space {at['N_space']}, N_t {at['N_t']}, "
+                  f"N_tot {at['N_tot']}\n")
+            print("| variant | primal s | adjoint s | estimate s | refine s | loop s "
+                  "| peak MB (largest rank) | speed-up | against 1 thread |")
+            print("|---|---|---|---|---|---|---|---|---|")
+            base = sum(float(at[p]) for p in PHASES)
+            one = runs.get("umfpack_1thread", ref)[k]
+            base1 = sum(float(one[p]) for p in PHASES)
+            for v in ORDER:
+                if v not in runs or len(runs[v]) <= k:
+                    continue
+                row = runs[v][k]
+                t = [float(row[p]) for p in PHASES]
+                print(f"| {LABEL[v]} | " + " | ".join(f"{x:.2f}" for x in t) +
+                      f" | {sum(t):.2f} | {float(row['mem_peak']):.0f} | {base / sum(t):.2f}"
+                      f" | {base1 / sum(t):.2f} |")
+                if k == len(ref) - 1:
+                    bars.append((f"{config}\n{v}", t))
         print()
     if chart and bars:
         import matplotlib
