@@ -10,7 +10,9 @@
 # then postprocess/mpi_table.py OUT: whether all variants reproduce the serial loops
 # (N_space, N_t, J), and the last loop's phase times, rank 0's peak memory and the
 # speed-up against the serial default. Env: OUT (default results/bench_mpi; a directory
-# per config below it), RANKS (default 2), CHART (a PNG path for the bar chart).
+# per config below it), RANKS (default 2), CHART (a PNG path for the bar chart), REPEAT
+# (default 1: rounds of all variants; the table keeps each variant's fastest round),
+# FIRST (default 1; FIRST=2 REPEAT=2 adds a second round to an existing OUT).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BIN=${BIN:-$ROOT/build/app/anisodwr}
@@ -21,11 +23,17 @@ OUT=$BASE/$(basename "$CONFIG" .json)
 RANKS=${RANKS:-2}
 mkdir -p "$OUT"
 common=(run "$CONFIG" --set adaptivity.loops="$LOOPS" --set output.vtu_loops=0 "$@")
-DEAL_II_NUM_THREADS=1 "$BIN" "${common[@]}" --output "$OUT/umfpack_1thread" >/dev/null
-"$BIN" "${common[@]}" --output "$OUT/umfpack" >/dev/null
-"$BIN" "${common[@]}" --set solver.direct=mumps --output "$OUT/mumps" >/dev/null
-mpirun --allow-run-as-root --oversubscribe -np "$RANKS" "$BIN" "${common[@]}" \
-  --output "$OUT/mpi$RANKS" >/dev/null
-mpirun --allow-run-as-root --oversubscribe -np "$RANKS" "$BIN" "${common[@]}" \
-  --set solver.direct=umfpack --output "$OUT/mpi${RANKS}_umfpack" >/dev/null
+REPEAT=${REPEAT:-1}
+mpi=(mpirun --allow-run-as-root --oversubscribe -np "$RANKS")
+# the variants in turn, REPEAT rounds (round k > 1 writes VARIANT.k; the table takes
+# the fastest round of each variant, per loop)
+for ((k = ${FIRST:-1}; k <= REPEAT; ++k)); do
+  sfx=$([ "$k" = 1 ] && echo "" || echo ".$k")
+  DEAL_II_NUM_THREADS=1 "$BIN" "${common[@]}" --output "$OUT/umfpack_1thread$sfx" >/dev/null
+  "$BIN" "${common[@]}" --output "$OUT/umfpack$sfx" >/dev/null
+  "$BIN" "${common[@]}" --set solver.direct=mumps --output "$OUT/mumps$sfx" >/dev/null
+  "${mpi[@]}" "$BIN" "${common[@]}" --output "$OUT/mpi$RANKS$sfx" >/dev/null
+  "${mpi[@]}" "$BIN" "${common[@]}" --set solver.direct=umfpack \
+    --output "$OUT/mpi${RANKS}_umfpack$sfx" >/dev/null
+done
 /usr/bin/python3 "$ROOT/postprocess/mpi_table.py" "$BASE" ${CHART:+"$CHART"}
