@@ -92,6 +92,7 @@ def main():
             h = [b[1][i] for b in bars]
             ax.bar(range(len(bars)), h, bottom=bottom, label=p[2:])
             bottom = [x + y for x, y in zip(bottom, h)]
+        ax.set_ylim(0, 1.08 * max(bottom))
         ax.set_xticks(range(len(bars)))
         ax.set_xticklabels([b[0] for b in bars], fontsize=7)
         ax.set_ylabel("wall time of the last DWR loop [s]")
