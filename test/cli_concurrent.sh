@@ -4,7 +4,8 @@
 # fixed weights, moving_hump with goal.weights = estimate and the dG(r+1) primal), and
 # the concurrent column says which loops ran concurrently: all of them with the key true
 # (on a machine with more than one core), none with false, none with goal.weights = auto
-# (hemker: the adjoint's goal weights come from the primal).
+# (hemker: the adjoint's goal weights come from the primal); hemker's auto weights follow
+# the lift differences recorded in summary.json.
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
 
 column_values() { # loops.csv COLUMN: the column's distinct values
@@ -38,4 +39,21 @@ done
   --output "$tmp/hemker" >/dev/null 2>&1 || { echo "FAIL: hemker"; fail=1; }
 auto=$(column_values "$tmp/hemker/loops.csv" concurrent)
 [ "$auto" = 0 ] || { echo "FAIL: hemker (goal.weights = auto) marched concurrently: '$auto'"; fail=1; }
+# summary.json records each goal's lift difference d; the weight is sign(d)/|J_h|, and
+# +1/|J_h| where |d| <= 1e-8 |J_h| (hemker loop 1: the lift does not see u_xe2_I)
+/usr/bin/python3 - "$tmp/hemker/summary.json" <<'PY' || fail=1
+import json, sys
+seen = {"unseen": 0, "negative": 0}
+for loop in json.load(open(sys.argv[1]))["loops"]:
+    for name, g in loop["goals"].items():
+        d, J, w = g["lift_difference"], g["J_h"], g["weight"]
+        unseen = abs(d) <= 1e-8 * abs(J)
+        want = (1 if unseen or d >= 0 else -1) / abs(J)
+        if abs(w - want) > 1e-10 * abs(want):  # summary.json keeps 12 digits
+            sys.exit(f"FAIL: hemker loop {loop['loop']} {name}: weight {w}, want {want} (d = {d})")
+        seen["unseen" if unseen else "negative" if d < 0 else "positive"] = 1
+if not (seen["unseen"] and seen["negative"]):
+    sys.exit(f"FAIL: hemker loops 1-2 should have an unseen and a negative lift difference: {seen}")
+print("hemker, auto weights from the recorded lift differences: ok")
+PY
 exit $fail

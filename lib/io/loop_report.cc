@@ -154,7 +154,11 @@ std::string summary_json(const SummaryContext &context, const std::vector<LoopRo
     for (std::size_t g = 0; g < goals.size(); ++g)
       f << (g ? ", " : "") << "\"" << goals[g] << "\": {\"J_h\": " << num(r.J_goal[g])
         << ", \"J_exact\": " << num(r.J_goal_exact[g])
-        << ", \"weight\": " << num(r.weights[g]) << "}";
+        << ", \"weight\": " << num(r.weights[g])
+        << (r.lift_difference.size() > g
+                ? ", \"lift_difference\": " + num(r.lift_difference[g])
+                : std::string())
+        << "}";
     f << "}, \"probes\": {";
     for (const auto &[name, value] : r.probes)
       f << "\"" << name << "\": " << num(value) << ", ";

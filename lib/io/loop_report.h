@@ -22,6 +22,9 @@ struct LoopRow
   std::array<double, 2> eta_h{};
   std::vector<double> J_goal, J_goal_exact;
   std::vector<double> weights;
+  /// goal.weights = auto: J_i(I_2h u) - J_i(u_h) per goal, whose sign gave the weight
+  /// (0 up to rounding: the lift does not see the goal; empty otherwise)
+  std::vector<double> lift_difference;
   double t_primal = 0, t_adjoint = 0, t_estimate = 0, t_refine = 0, mem = 0;
   double eta_tau_rho = 0, eta_tau_rhostar = 0;
   /// the parts of eta_h summed over directions (1/2 rho(u)(z - R_i z), the adjoint half,

@@ -579,6 +579,7 @@ void AdaptiveLoop::evaluate_goals(LoopRow &row, const Space<2> &primal,
     if (auto_weights)
     {
       const double d = lift_difference(primal, goals[g], mesh, basis, U);
+      row.lift_difference.push_back(d);
       goals[g].weight = signed_goal_weight(d, row.J_goal[g], auto_weight_unseen);
     }
   }
