@@ -154,8 +154,8 @@ TEST(AutoWeights, UnseenLiftDifferenceGivesPositiveWeight)
         e = dist(gen);
     for (const GoalSpec &g : goals())
     {
-      const double J = evaluate_goal(assemble_goal_vectors(space, {unweighted(g)}), mesh,
-                                     basis, U);
+      const double J =
+          evaluate_goal(assemble_goal_vectors(space, {unweighted(g)}), mesh, basis, U);
       const double d = lift_difference(space, g, mesh, basis, U);
       const double w = signed_goal_weight(d, J, auto_weight_unseen);
       if (!patches || (g.kind == GoalKind::point && g.radius == 0))

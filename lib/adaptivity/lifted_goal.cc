@@ -7,8 +7,8 @@ namespace anisodwr
 {
 using namespace dealii;
 
-double lift_difference(const Space<2> &primal, const GoalSpec &goal,
-                       const TimeMesh &mesh, const TemporalBasis &basis, const std::vector<Vector<double>> &U)
+double lift_difference(const Space<2> &primal, const GoalSpec &goal, const TimeMesh &mesh,
+                       const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
   const SpatialOperators<2> ops(primal.dof_handler(), 2 * primal.degree());
   const GoalSpec g = unweighted(goal);

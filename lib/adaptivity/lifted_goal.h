@@ -15,6 +15,6 @@ namespace anisodwr
 /// cells without a patch (where u~ = u_h) are skipped, so the difference is exactly 0
 /// where the lift changes nothing, not the difference of two quadratures.
 double lift_difference(const Space<2> &primal, const GoalSpec &goal, const TimeMesh &mesh,
-                   const TemporalBasis &basis,
-                   const std::vector<dealii::Vector<double>> &U);
+                       const TemporalBasis &basis,
+                       const std::vector<dealii::Vector<double>> &U);
 } // namespace anisodwr

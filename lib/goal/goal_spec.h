@@ -45,9 +45,9 @@ inline GoalSpec unweighted(const GoalSpec &goal)
 /// The weight of a goal with value J whose error is taken to have the sign of s
 /// (goal.weights = auto: s = J(I_2h u_h) - J(u_h); estimate: s = the goal's own
 /// estimate): sign(s) / max(|J|, 1e-12). Where |s| <= `unseen` * |J| the error is not
-/// seen (for `auto`: the goal's support lies on cells without a patch, where the lift
-/// is u_h itself and s is rounding noise), and the weight is +1 / |J|, so that it does
-/// not depend on the summation order.
+/// seen (for `auto`: the lift does not change u_h on the goal's support, e.g. none of
+/// its cells has a patch, and s is 0 up to rounding), and the weight is +1 / |J|, so
+/// that it does not depend on the summation order.
 inline double signed_goal_weight(double s, double J, double unseen = 0)
 {
   const double a = std::max(std::abs(J), 1e-12);
