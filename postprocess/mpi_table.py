@@ -5,8 +5,9 @@ Usage: mpi_table.py OUT [CHART.png]
 OUT holds one directory per config (hemker, moving_hump_paper, ...), each with one
 directory per variant (umfpack, umfpack_1thread, mumps, mpi2, ...) holding a run's
 loops.csv (further rounds of a variant in VARIANT.2, VARIANT.3, ...; each loop's row
-is the variant's fastest round). Prints, per config, whether every variant has the serial run's N_space, N_t
-and J (1e-8 relative) on every loop, and Markdown tables of the last loop and of the
+is the variant's fastest round). Prints, per config, whether every variant (every
+round) has the serial run's N_space, N_t and J (1e-8 relative) on every loop, and
+Markdown tables of the last loop and of the
 loop four before it (two sizes): phase times (s), the loop's sum, the largest peak
 memory over the ranks up to that loop (MB) and the speed-up against the serial default
 (umfpack) and against one single-threaded process. With CHART, draws the last loop's
@@ -26,6 +27,10 @@ LABEL = {
     "mpi2_umfpack": "2 ranks x 1 thread, UMFPACK on each rank",
     "mpi4": "4 ranks, MUMPS",
 }
+
+
+def loop_time(row):
+    return sum(float(row[p]) for p in PHASES)
 
 
 def load(path):
@@ -66,15 +71,15 @@ def main():
             print("| variant | primal s | adjoint s | estimate s | refine s | loop s "
                   "| peak MB (largest rank) | speed-up | against 1 thread |")
             print("|---|---|---|---|---|---|---|---|---|")
-            def fastest(v):
-                return min(sum(float(r[k][p]) for p in PHASES) for r in rounds[v] if len(r) > k)
-            base = fastest("umfpack")
-            base1 = fastest("umfpack_1thread" if "umfpack_1thread" in rounds else "umfpack")
+            def fastest(v):  # the variant's fastest round of loop k
+                return min((r[k] for r in rounds[v] if len(r) > k), key=loop_time)
+            base = loop_time(fastest("umfpack"))
+            base1 = loop_time(fastest("umfpack_1thread" if "umfpack_1thread" in rounds
+                                      else "umfpack"))
             for v in ORDER:
                 if v not in runs or len(runs[v]) <= k:
                     continue
-                row = min((r[k] for r in rounds[v] if len(r) > k),
-                          key=lambda x: sum(float(x[p]) for p in PHASES))
+                row = fastest(v)
                 t = [float(row[p]) for p in PHASES]
                 print(f"| {LABEL[v]} | " + " | ".join(f"{x:.2f}" for x in t) +
                       f" | {sum(t):.2f} | {float(row['mem_peak']):.0f} | {base / sum(t):.2f}"

@@ -8,8 +8,9 @@
 #                    and solves the whole slab system itself; only the estimator is shared)
 #   scripts/bench_mpi.sh CONFIG LOOPS [--set key=value ...]
 # then postprocess/mpi_table.py OUT: whether all variants reproduce the serial loops
-# (N_space, N_t, J), and the last loop's phase times, rank 0's peak memory and the
-# speed-up against the serial default. Env: OUT (default results/bench_mpi; a directory
+# (N_space, N_t, J), and for the last loop and the one four before it the phase times,
+# the largest rank's peak memory and the speed-ups against the serial default and
+# against one thread. Env: OUT (default results/bench_mpi; a directory
 # per config below it), RANKS (default 2), CHART (a PNG path for the bar chart), REPEAT
 # (default 1: rounds of all variants; the table keeps each variant's fastest round),
 # FIRST (default 1; FIRST=2 REPEAT=2 adds a second round to an existing OUT).

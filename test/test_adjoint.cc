@@ -128,9 +128,10 @@ TEST(Mollifier, LargeCellsIntegrateLinearFunctionsExactly)
 }
 
 // goal.weights = auto takes each goal's sign from d = J(I_2h u_h) - J(u_h). On cells
-// without a patch the lift is u_h itself, so d is rounding noise whose sign depends on
-// the summation order; such a goal must get the weight +1/|J|, while a goal whose lift
-// does see a difference keeps the sign of d.
+// without a patch the lift is u_h itself, so d must be exactly 0 there (not the
+// difference of two quadratures), and a d at rounding level, whose sign depends on the
+// summation order, must give the weight +1/|J|; a goal whose lift does see a
+// difference keeps the sign of d.
 TEST(AutoWeights, UnseenLiftDifferenceGivesPositiveWeight)
 {
   const auto scene = manufactured();

@@ -20,6 +20,10 @@ double lift_difference(const Space<2> &primal, const GoalSpec &goal, const TimeM
   gauss_rule(m1 + 1, gp, gw);
   double d = 0;
   Vector<double> j, v, u;
+  LocalMap own; // u_h on the cell, interpolated into the weight element
+  own.exists = true;
+  own.dofs.resize(primal.finite_element().n_dofs_per_cell());
+  own.matrix = P;
   for (const auto &cell : primal.dof_handler().active_cell_iterators())
   {
     if (!local.cell_vector(cell, j))
@@ -27,11 +31,7 @@ double lift_difference(const Space<2> &primal, const GoalSpec &goal, const TimeM
     const LocalMap lift = ops.patch_lift(cell);
     if (!lift.exists) // no patch: the lift is u_h itself
       continue;
-    LocalMap own;
-    own.dofs.resize(primal.finite_element().n_dofs_per_cell());
     cell->get_dof_indices(own.dofs);
-    own.exists = true;
-    own.matrix = P;
     auto node_value = [&](unsigned int n, unsigned int k)
     {
       lift.apply(U[n], v, m1, k);
