@@ -5,6 +5,7 @@
 // Kronecker slab operator, to round-off: random continuous functions (hanging nodes,
 // anisotropic cells), polynomial-in-space data, time-dependent b and alpha.
 #include "adaptivity/estimator.h"
+#include "adaptivity/short_vectors.h"
 #include "config/parameters.h"
 #include "slab/adjoint_march.h"
 #include "slab/primal_march.h"
@@ -214,16 +215,19 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
   over_I.upper = {1., 0.5};
   over_I.over_time = true;
   over_I.weight = 0.5;
-  for (const auto &goals : std::vector<std::vector<GoalSpec>>{{at_T}, {over_I}, {at_T, over_I}})
+  for (const auto &goals :
+       std::vector<std::vector<GoalSpec>>{{at_T}, {over_I}, {at_T, over_I}})
   {
     const GoalVectors j = assemble_goal_vectors(space, goals);
     const auto Z = march_adjoint(space, mesh, basis, op, j, MarchOptions{});
-    const double err_tau = evaluate_goal(j, mesh, basis_hi, U_hi) - evaluate_goal(j, mesh, basis, U);
+    const double err_tau =
+        evaluate_goal(j, mesh, basis_hi, U_hi) - evaluate_goal(j, mesh, basis, U);
     const HigherOrderPrimal hi{basis_hi, U_hi};
     const auto ind = estimate(space, space, mesh, basis, U, Z, goals,
                               TimeIndicator::higher_order, &hi);
     EXPECT_GT(std::abs(err_tau), 1e-5);
-    EXPECT_NEAR(ind.eta_tau, err_tau, 1e-9 * std::abs(err_tau)) << goals.size() << " goal(s)";
+    EXPECT_NEAR(ind.eta_tau, err_tau, 1e-9 * std::abs(err_tau))
+        << goals.size() << " goal(s)";
     double slab_sum = 0;
     for (const double e : ind.eta_tau_slab)
       slab_sum += e;
@@ -235,8 +239,9 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
       EXPECT_GT(std::abs(radau.eta_tau - err_tau), 1e-3 * std::abs(err_tau));
     }
   }
-  EXPECT_THROW(estimate(space, space, mesh, basis, U, U, {at_T}, TimeIndicator::higher_order),
-               std::invalid_argument);
+  EXPECT_THROW(
+      estimate(space, space, mesh, basis, U, U, {at_T}, TimeIndicator::higher_order),
+      std::invalid_argument);
 }
 
 /// The moving hump (SUPG on) on make_mesh() refined `refinements` more times: Q1 primal
@@ -281,8 +286,8 @@ TEST(SpaceIndicator, PartsSumToEtaHInBothForms)
   const HumpProblem hump(1);
   const auto avg = hump.estimate(SpaceIndicator::average);
   const auto pr = hump.estimate(SpaceIndicator::primal_residual);
-  const double scale = std::abs(avg.eta_h_rho) + std::abs(avg.eta_h_rhostar) +
-                       std::abs(avg.eta_h_supg);
+  const double scale =
+      std::abs(avg.eta_h_rho) + std::abs(avg.eta_h_rhostar) + std::abs(avg.eta_h_supg);
   ASSERT_GT(scale, 0.);
   EXPECT_GT(std::abs(avg.eta_h_rhostar), 1e-6 * scale); // the forms differ
   EXPECT_NEAR(avg.eta_h_total(), avg.eta_h_rho + avg.eta_h_rhostar + avg.eta_h_supg,
@@ -325,15 +330,15 @@ void expect_indicators_near(const Indicators<2> &a, const Indicators<2> &b, doub
   }
   for (unsigned int n = 0; n < a.eta_tau_slab.size(); ++n)
     EXPECT_NEAR(a.eta_tau_slab[n], b.eta_tau_slab[n], tol);
-  for (const auto &[x, y] : std::vector<std::pair<double, double>>{
-           {a.eta_h[0], b.eta_h[0]},
-           {a.eta_h[1], b.eta_h[1]},
-           {a.eta_tau, b.eta_tau},
-           {a.eta_h_rho, b.eta_h_rho},
-           {a.eta_h_rhostar, b.eta_h_rhostar},
-           {a.eta_h_supg, b.eta_h_supg},
-           {a.eta_tau_rho, b.eta_tau_rho},
-           {a.eta_tau_rhostar, b.eta_tau_rhostar}})
+  for (const auto &[x, y] :
+       std::vector<std::pair<double, double>>{{a.eta_h[0], b.eta_h[0]},
+                                              {a.eta_h[1], b.eta_h[1]},
+                                              {a.eta_tau, b.eta_tau},
+                                              {a.eta_h_rho, b.eta_h_rho},
+                                              {a.eta_h_rhostar, b.eta_h_rhostar},
+                                              {a.eta_h_supg, b.eta_h_supg},
+                                              {a.eta_tau_rho, b.eta_tau_rho},
+                                              {a.eta_tau_rhostar, b.eta_tau_rhostar}})
     EXPECT_NEAR(x, y, tol);
 }
 
@@ -399,4 +404,54 @@ TEST(Estimator, ThreadCountDoesNotChangeTheIndicators)
   for (const auto &c : b.eta_h_cell)
     cells += c[0] + c[1];
   EXPECT_NEAR(cells, b.eta_h_total(), tol);
+}
+
+// The estimator's short-vector helpers must give exactly deal.II's results (the
+// indicators, marking and every table stay bit-identical). Values spread over 16 orders
+// of magnitude make the summation order visible in the last bits.
+TEST(ShortVectors, BitIdenticalToDealII)
+{
+  namespace sv = anisodwr::short_vectors;
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> mantissa(-1., 1.);
+  std::uniform_int_distribution<int> exponent(-8, 8);
+  const auto random = [&](unsigned int n)
+  {
+    Vector<double> v(n);
+    for (auto &e : v)
+      e = std::ldexp(mantissa(gen), 3 * exponent(gen));
+    return v;
+  };
+  unsigned int order_matters = 0;
+  for (unsigned int n = 1; n <= 40; ++n)
+    for (int trial = 0; trial < 20; ++trial)
+    {
+      const Vector<double> a = random(n), b = random(n);
+      EXPECT_EQ(sv::dot(a, b), a * b) << "n = " << n;
+      EXPECT_EQ(sv::norm_sqr(a), a.norm_sqr()) << "n = " << n;
+      double sequential = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        sequential += a(i) * b(i);
+      order_matters += sequential != a * b;
+
+      const double s = mantissa(gen);
+      Vector<double> y = a, ref = a;
+      sv::add(y, s, b);
+      ref.add(s, b);
+      sv::subtract(y, a);
+      ref -= a;
+      sv::scale(y, 1. / s);
+      ref /= s;
+      for (unsigned int i = 0; i < n; ++i)
+        EXPECT_EQ(y(i), ref(i)) << "n = " << n << ", i = " << i;
+      Vector<double> c;
+      sv::copy(c, y);
+      EXPECT_EQ(c, y);
+      sv::zero(c, n + 1);
+      EXPECT_EQ(c.size(), n + 1);
+      EXPECT_EQ(c.linfty_norm(), 0.);
+    }
+  // a plain left-to-right sum differs from deal.II's order on these data, so the
+  // checks above see the order
+  EXPECT_GT(order_matters, 50u);
 }

@@ -2,6 +2,7 @@
 // (cell residual, face fluxes, temporal jump), the SUPG form S(u), the adjoint form
 // A(.)(z) and S'(., z), and J'.
 #include "adaptivity/cell_kernel.h"
+#include "adaptivity/short_vectors.h"
 
 #include "space/weak_form.h"
 #include "time/slab_vector.h"
@@ -9,6 +10,7 @@
 namespace anisodwr
 {
 using namespace dealii;
+namespace sv = short_vectors;
 
 template <int dim>
 void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<double> &Un,
@@ -46,7 +48,8 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
       for (unsigned int l = 0; l < nw; ++l)
       {
         rho.val[m](l) += jx * R * fv_w.shape_value(l, q);
-        supg.val[m](l) -= jx * R * weak_form::supg_test(delta, cf.b, fv_w.shape_grad(l, q));
+        supg.val[m](l) -=
+            jx * R * weak_form::supg_test(delta, cf.b, fv_w.shape_grad(l, q));
       }
     }
     add_face_terms(m, t, wt, Un, c, rho);
@@ -117,7 +120,8 @@ void CellKernel<dim>::add_temporal_jump(double t0, double delta, const Vector<do
     for (unsigned int l = 0; l < nw; ++l)
     {
       rho.jump(l) -= fv_p.JxW(q) * jump * fv_w.shape_value(l, q);
-      supg.jump(l) += fv_p.JxW(q) * jump * weak_form::supg_test(delta, b, fv_w.shape_grad(l, q));
+      supg.jump(l) +=
+          fv_p.JxW(q) * jump * weak_form::supg_test(delta, b, fv_w.shape_grad(l, q));
     }
   }
 }
@@ -139,12 +143,12 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau, const SlabFuncti
     {
       const double wt = tau * omega[m] * scale;
       Kc.vmult(A.val[m], zt.val[m]);
-      A.val[m] *= wt;
+      sv::scale(A.val[m], wt);
       Mc.vmult(A.dt[m], zt.val[m]);
-      A.dt[m] *= wt;
+      sv::scale(A.dt[m], wt);
     }
     Mc.vmult(A.jump, zt.plus);
-    A.jump *= scale;
+    sv::scale(A.jump, scale);
     return;
   }
   const double delta = primal.bounded_delta(delta_h, tau);
@@ -179,7 +183,8 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau, const SlabFuncti
         A.dt[m](l) += jx * phi * test;
         if (supg)
           A.val[m](l) +=
-              jx * weak_form::strong(cf, phi, gphi, trace(fv_w.shape_hessian(l, q))) * test;
+              jx * weak_form::strong(cf, phi, gphi, trace(fv_w.shape_hessian(l, q))) *
+              test;
         else
           A.val[m](l) += jx * weak_form::galerkin(cf, phi, gphi, zq, gz);
       }
@@ -194,7 +199,7 @@ void CellKernel<dim>::goal_functional(double tau, const Vector<double> &jt,
   J.reset(g.size(), fe_w.n_dofs_per_cell());
   if (jt.size())
     for (unsigned int m = 0; m < g.size(); ++m)
-      J.val[m].add(tau * omega[m], jt);
+      sv::add(J.val[m], tau * omega[m], jt);
 }
 
 template void CellKernel<2>::primal_functionals(double, double, const Vector<double> &,

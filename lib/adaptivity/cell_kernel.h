@@ -159,6 +159,9 @@ void slab_function(const CellKernel<dim> &kernel, const TemporalBasis &basis, do
 /// f = R f (each vector of f that is set).
 void transform(const dealii::FullMatrix<double> &R, SlabFunction &f);
 
+/// d = a (d's vectors are reused).
+void assign(const SlabFunction &a, SlabFunction &d);
+
 /// d = a - b (d's vectors are reused).
 void difference(const SlabFunction &a, const SlabFunction &b, SlabFunction &d);
 

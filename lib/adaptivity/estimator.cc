@@ -1,6 +1,7 @@
 #include "adaptivity/estimator.h"
 
 #include "adaptivity/cell_kernel.h"
+#include "adaptivity/short_vectors.h"
 #include "adaptivity/spatial_operators.h"
 #include "adaptivity/temporal_reconstruction.h"
 #include "base/mpi.h"
@@ -20,6 +21,7 @@
 namespace anisodwr
 {
 using namespace dealii;
+namespace sv = short_vectors;
 
 namespace
 {
@@ -47,7 +49,8 @@ public:
 private:
   /// The slab's terms for the cell; supg_part and lift_size accumulate over the slabs.
   void add_slab(unsigned int n, unsigned int c, Indicators<dim> &cells,
-                Indicators<dim> &ind, double &supg_part, std::array<double, dim> &lift_size);
+                Indicators<dim> &ind, double &supg_part,
+                std::array<double, dim> &lift_size);
   /// W-local z and u at the temporal nodes of slab n, z(t_n^+) and u(t_{n-1}^-).
   void gather_slab(unsigned int n);
   /// eta_h,i on slab n; adds ||I_2h,i u - u||^2 over the slab to lift_size and the
@@ -174,14 +177,15 @@ void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell, Indicators<dim>
 template <int dim>
 void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
                                       Indicators<dim> &cells, Indicators<dim> &ind,
-                                      double &supg_part, std::array<double, dim> &lift_size)
+                                      double &supg_part,
+                                      std::array<double, dim> &lift_size)
 {
   const double t0 = mesh.start(n), tau = mesh.tau(n);
   kernel.primal_functionals(t0, tau, U[n], n ? &U[n - 1] : nullptr, rho, supg);
   gather_slab(n);
 
   slab_function(kernel, basis, tau, zk, z);
-  Rhz = z;
+  assign(z, Rhz);
   transform(ops.restriction(dim), Rhz);
   kernel.adjoint_functional(t0, tau, Rhz, false, A_rh);
   kernel.adjoint_functional(t0, tau, Rhz, true, S_rh);
@@ -225,12 +229,12 @@ template <int dim> void IndicatorAssembly<dim>::gather_slab(unsigned int n)
     gather(Z[n], idx_q, m1, k, Q, zk[k]);
     gather(U[n], idx, m1, k, P, uk[k]);
   }
-  z_next = 0.;
+  sv::zero(z_next);
   if (n + 1 < N)
     for (unsigned int k = 0; k < m1; ++k)
     {
       gather(Z[n + 1], idx_q, m1, k, Q, tmp);
-      z_next.add(basis.left_trace()[k], tmp);
+      sv::add(z_next, basis.left_trace()[k], tmp);
     }
   else if (zT.size())
     gather(zT, idx_q, 1, 0, Q, z_next);
@@ -246,7 +250,7 @@ double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned in
                                                      double &lift_size,
                                                      Indicators<dim> &ind)
 {
-  Riz = z;
+  assign(z, Riz);
   transform(ops.restriction(i), Riz);
   difference(z, Riz, dz);
   const double half_rho = 0.5 * apply(rho, dz, false);
@@ -258,25 +262,25 @@ double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned in
   for (unsigned int k = 0; k < m1; ++k)
   {
     lift[i].apply(U[n], vk[k], m1, k);
-    vk[k] -= uk[k];
+    sv::subtract(vk[k], uk[k]);
   }
   slab_function(kernel, basis, tau, vk, v);
   for (const auto &vv : v.val)
-    lift_size += tau * vv.norm_sqr();
+    lift_size += tau * sv::norm_sqr(vv);
   if (n > 0)
   {
     lift[i].apply(U[n - 1], v.minus, m1, m1 - 1);
-    v.minus -= u_prev;
+    sv::subtract(v.minus, u_prev);
   }
   else
     v.minus.reinit(0);
   double jv = apply(Jf, v, false); // J' over I
   if (last && jT.size())
   {
-    vT = 0.;
+    sv::zero(vT);
     for (unsigned int k = 0; k < m1; ++k)
-      vT.add(basis.right_trace()[k], vk[k]);
-    jv += jT * vT;
+      sv::add(vT, basis.right_trace()[k], vk[k]);
+    jv += sv::dot(jT, vT);
   }
   const double half_rhostar =
       0.5 * (jv - apply(A_rh, v, true)) + 0.5 * apply(S_rh, v, true);
@@ -295,36 +299,37 @@ template <int dim> void IndicatorAssembly<dim>::reconstruction_errors(double tau
     for (bool deriv : {false, true})
     {
       const TimeCombination &a = E_z[m][deriv], &b = E_u[m][deriv];
-      vz = 0.;
-      vu = 0.;
-      vz.add(a.outside, z_next);
-      vu.add(b.outside, u_prev);
+      sv::zero(vz);
+      sv::zero(vu);
+      sv::add(vz, a.outside, z_next);
+      sv::add(vu, b.outside, u_prev);
       for (unsigned int k = 0; k < m1; ++k)
       {
-        vz.add(a.slab[k], zk[k]);
-        vu.add(b.slab[k], uk[k]);
+        sv::add(vz, a.slab[k], zk[k]);
+        sv::add(vu, b.slab[k], uk[k]);
       }
       if (deriv)
       {
-        vz /= tau;
-        vu /= tau;
-        vz -= z.dt[m];
-        vu -= u.dt[m];
-        ez.dt[m] = vz;
-        eu.dt[m] = vu;
+        // (deal.II's operator/= multiplies by the reciprocal)
+        sv::scale(vz, 1. / tau);
+        sv::scale(vu, 1. / tau);
+        sv::subtract(vz, z.dt[m]);
+        sv::subtract(vu, u.dt[m]);
+        sv::copy(ez.dt[m], vz);
+        sv::copy(eu.dt[m], vu);
       }
       else
       {
-        vz -= z.val[m];
-        vu -= u.val[m];
-        ez.val[m] = vz;
-        eu.val[m] = vu;
+        sv::subtract(vz, z.val[m]);
+        sv::subtract(vu, u.val[m]);
+        sv::copy(ez.val[m], vz);
+        sv::copy(eu.val[m], vu);
       }
     }
   }
-  ez.plus.reinit(nw); // E z(t_{n-1}) = z(t_{n-1}^+)
-  eu.plus = u_prev;   // E u(t_{n-1}) - u(t_{n-1}^+)
-  eu.plus -= u.plus;
+  sv::zero(ez.plus, nw);     // E z(t_{n-1}) = z(t_{n-1}^+)
+  sv::copy(eu.plus, u_prev); // E u(t_{n-1}) - u(t_{n-1}^+)
+  sv::subtract(eu.plus, u.plus);
 }
 
 template <int dim>
@@ -337,17 +342,17 @@ double IndicatorAssembly<dim>::higher_order_errors(unsigned int n, double tau, b
     gather(hi->U[n], idx, m2, k, P, hk[k]);
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
   {
-    vu = 0.;
-    tmp = 0.;
+    sv::zero(vu);
+    sv::zero(tmp);
     for (unsigned int k = 0; k < m2; ++k)
     {
-      vu.add(hi_val[m][k], hk[k]);
-      tmp.add(hi_der[m][k] / tau, hk[k]);
+      sv::add(vu, hi_val[m][k], hk[k]);
+      sv::add(tmp, hi_der[m][k] / tau, hk[k]);
     }
-    vu -= u.val[m];
-    tmp -= u.dt[m];
-    eu.val[m] = vu;
-    eu.dt[m] = tmp;
+    sv::subtract(vu, u.val[m]);
+    sv::subtract(tmp, u.dt[m]);
+    sv::copy(eu.val[m], vu);
+    sv::copy(eu.dt[m], tmp);
   }
   eu.plus = 0.;
   for (unsigned int k = 0; k < m2; ++k)
@@ -413,10 +418,9 @@ void allreduce_chunks(std::vector<Indicators<dim>> &sums, Indicators<dim> &ind)
 /// Runs assembly.add_cell over all cells on MultithreadInfo::n_threads() threads and
 /// returns the per-chunk sums in chunk order (the cell's own indicators go to `ind`).
 template <int dim, class MakeAssembly>
-std::vector<Indicators<dim>> add_cells_in_chunks(const DoFHandler<dim> &dofs,
-                                                 unsigned int n_slabs,
-                                                 const MakeAssembly &make_assembly,
-                                                 Indicators<dim> &ind)
+std::vector<Indicators<dim>>
+add_cells_in_chunks(const DoFHandler<dim> &dofs, unsigned int n_slabs,
+                    const MakeAssembly &make_assembly, Indicators<dim> &ind)
 {
   // The cells are cut into chunks that depend only on their number; each chunk sums
   // its own contributions and the chunks are added in order, so the totals depend on
@@ -458,8 +462,8 @@ std::vector<Indicators<dim>> add_cells_in_chunks(const DoFHandler<dim> &dofs,
       next = n_mine; // the other threads stop after their chunk
     }
   };
-  const unsigned int n_threads =
-      std::max<std::size_t>(1, std::min<std::size_t>(MultithreadInfo::n_threads(), n_mine));
+  const unsigned int n_threads = std::max<std::size_t>(
+      1, std::min<std::size_t>(MultithreadInfo::n_threads(), n_mine));
   std::vector<std::thread> threads;
   for (unsigned int t = 1; t < n_threads; ++t)
     threads.emplace_back(work);
@@ -490,7 +494,8 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
         "estimate: the higher-order primal must be dG(r+1) on the "
         "same slabs");
   Vector<double> zT, u0(primal.n_dofs());
-  if (std::any_of(goals.begin(), goals.end(), [](const GoalSpec &g) { return !g.over_time; }))
+  if (std::any_of(goals.begin(), goals.end(),
+                  [](const GoalSpec &g) { return !g.over_time; }))
     zT = end_time_representer(adjoint, goals);
   {
     const ScalarFunctionFromFunctionObject<dim> f0(
@@ -528,9 +533,10 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
   return ind;
 }
 
-template Indicators<2>
-estimate<2>(const Space<2> &, const Space<2> &, const TimeMesh &, const TemporalBasis &,
-            const std::vector<Vector<double>> &, const std::vector<Vector<double>> &,
-            const std::vector<GoalSpec> &, TimeIndicator, const HigherOrderPrimal *,
-            SpaceIndicator);
+template Indicators<2> estimate<2>(const Space<2> &, const Space<2> &, const TimeMesh &,
+                                   const TemporalBasis &,
+                                   const std::vector<Vector<double>> &,
+                                   const std::vector<Vector<double>> &,
+                                   const std::vector<GoalSpec> &, TimeIndicator,
+                                   const HigherOrderPrimal *, SpaceIndicator);
 } // namespace anisodwr

@@ -1,12 +1,14 @@
 // Slab functions and slab functionals in W-local coefficients: evaluation, gathering
 // from interleaved slab vectors, transformation and differences.
 #include "adaptivity/cell_kernel.h"
+#include "adaptivity/short_vectors.h"
 
 #include "time/slab_vector.h"
 
 namespace anisodwr
 {
 using namespace dealii;
+namespace sv = short_vectors;
 
 void SlabFunctional::reset(unsigned int n_points, unsigned int n)
 {
@@ -18,10 +20,10 @@ void SlabFunctional::reset(unsigned int n_points, unsigned int n)
     return;
   }
   for (auto &v : val)
-    v = 0.;
+    sv::zero(v);
   for (auto &v : dt)
-    v = 0.;
-  jump = 0.;
+    sv::zero(v);
+  sv::zero(jump);
 }
 
 double apply(const SlabFunctional &F, const SlabFunction &v, bool jump_of_v)
@@ -29,13 +31,13 @@ double apply(const SlabFunctional &F, const SlabFunction &v, bool jump_of_v)
   double s = 0;
   for (unsigned int m = 0; m < F.val.size(); ++m)
   {
-    s += F.val[m] * v.val[m];
+    s += sv::dot(F.val[m], v.val[m]);
     if (v.dt.size())
-      s += F.dt[m] * v.dt[m];
+      s += sv::dot(F.dt[m], v.dt[m]);
   }
-  s += F.jump * v.plus;
+  s += sv::dot(F.jump, v.plus);
   if (jump_of_v && v.minus.size())
-    s -= F.jump * v.minus;
+    s -= sv::dot(F.jump, v.minus);
   return s;
 }
 
@@ -65,17 +67,17 @@ void slab_function(const CellKernel<dim> &kernel, const TemporalBasis &basis, do
   for (unsigned int m = 0; m < n_points; ++m)
   {
     Vector<double> &v = f.val[m], &d = f.dt[m];
-    v.reinit(n);
-    d.reinit(n);
+    sv::zero(v, n);
+    sv::zero(d, n);
     for (unsigned int k = 0; k < V.size(); ++k)
     {
-      v.add(kernel.values_at(m)[k], V[k]);
-      d.add(kernel.derivatives_at(m)[k] / tau, V[k]);
+      sv::add(v, kernel.values_at(m)[k], V[k]);
+      sv::add(d, kernel.derivatives_at(m)[k] / tau, V[k]);
     }
   }
-  f.plus.reinit(n);
+  sv::zero(f.plus, n);
   for (unsigned int k = 0; k < V.size(); ++k)
-    f.plus.add(basis.left_trace()[k], V[k]);
+    sv::add(f.plus, basis.left_trace()[k], V[k]);
 }
 
 void transform(const FullMatrix<double> &R, SlabFunction &f)
@@ -87,7 +89,7 @@ void transform(const FullMatrix<double> &R, SlabFunction &f)
     thread_local Vector<double> t;
     t.reinit(v.size(), true);
     R.vmult(t, v);
-    v = t;
+    v.swap(t);
   };
   for (auto &v : f.val)
     one(v);
@@ -97,19 +99,35 @@ void transform(const FullMatrix<double> &R, SlabFunction &f)
   one(f.minus);
 }
 
+/// d = a (d's vectors are reused).
+void assign(const SlabFunction &a, SlabFunction &d)
+{
+  const auto all =
+      [](const std::vector<Vector<double>> &from, std::vector<Vector<double>> &to)
+  {
+    to.resize(from.size());
+    for (std::size_t m = 0; m < from.size(); ++m)
+      sv::copy(to[m], from[m]);
+  };
+  all(a.val, d.val);
+  all(a.dt, d.dt);
+  sv::copy(d.plus, a.plus);
+  sv::copy(d.minus, a.minus);
+}
+
 /// d = a - b (d's vectors are reused).
 void difference(const SlabFunction &a, const SlabFunction &b, SlabFunction &d)
 {
-  d = a;
+  assign(a, d);
   for (unsigned int m = 0; m < d.val.size(); ++m)
   {
-    d.val[m] -= b.val[m];
+    sv::subtract(d.val[m], b.val[m]);
     if (d.dt.size())
-      d.dt[m] -= b.dt[m];
+      sv::subtract(d.dt[m], b.dt[m]);
   }
-  d.plus -= b.plus;
+  sv::subtract(d.plus, b.plus);
   if (d.minus.size())
-    d.minus -= b.minus;
+    sv::subtract(d.minus, b.minus);
 }
 
 template void slab_function<2>(const CellKernel<2> &, const TemporalBasis &, double,

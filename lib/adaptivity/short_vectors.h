@@ -1,0 +1,115 @@
+#pragma once
+// Arithmetic on the estimator's cell vectors (W-local coefficients: 9 entries for Q2,
+// 16 for Q3). At these sizes deal.II's Vector operations cost more in their dispatch
+// (thread partitioner, parallel_for / parallel_reduce) than in the arithmetic. These
+// helpers do the same arithmetic in the same order, so their results are bit-identical
+// to deal.II's:
+// - element-wise operations are one multiply and/or add per entry, as in deal.II;
+// - sums of fewer than 32 terms follow deal.II's accumulate_recursive (up to three
+//   chunks of 8 summed in turn, then the remainder, combined as there); longer vectors
+//   go to deal.II itself.
+#include <deal.II/lac/vector.h>
+
+#include <algorithm>
+#include <cstddef>
+
+namespace anisodwr::short_vectors
+{
+/// sum_i term(i), i < n < 32, in deal.II's order for short vectors.
+template <class Term> inline double accumulate(const Term &term, std::size_t n)
+{
+  std::size_t i = 0;
+  double r0 = 0., r1 = 0., r2 = 0.;
+  switch (n / 8)
+  {
+  case 3:
+    r2 = term(i++);
+    for (unsigned int j = 1; j < 8; ++j)
+      r2 += term(i++);
+    [[fallthrough]];
+  case 2:
+    r1 = term(i++);
+    for (unsigned int j = 1; j < 8; ++j)
+      r1 += term(i++);
+    r1 += r2;
+    [[fallthrough]];
+  case 1:
+    r2 = term(i++);
+    for (unsigned int j = 1; j < 8; ++j)
+      r2 += term(i++);
+    [[fallthrough]];
+  default:
+    for (std::size_t j = 0; j < n % 8; ++j)
+      r0 += term(i++);
+    r0 += r2;
+    r0 += r1;
+  }
+  return r0;
+}
+
+/// a · b (= a * b of deal.II)
+inline double dot(const dealii::Vector<double> &a, const dealii::Vector<double> &b)
+{
+  if (a.size() >= 32)
+    return a * b;
+  const double *x = a.begin(), *y = b.begin();
+  return accumulate([&](std::size_t i) { return x[i] * y[i]; }, a.size());
+}
+
+/// |a|² (= a.norm_sqr())
+inline double norm_sqr(const dealii::Vector<double> &a)
+{
+  if (a.size() >= 32)
+    return a.norm_sqr();
+  const double *x = a.begin();
+  return accumulate([&](std::size_t i) { return x[i] * x[i]; }, a.size());
+}
+
+/// y += s x (= y.add(s, x))
+inline void add(dealii::Vector<double> &y, double s, const dealii::Vector<double> &x)
+{
+  double *py = y.begin();
+  const double *px = x.begin();
+  for (std::size_t i = 0; i < y.size(); ++i)
+    py[i] += s * px[i];
+}
+
+/// y -= x
+inline void subtract(dealii::Vector<double> &y, const dealii::Vector<double> &x)
+{
+  double *py = y.begin();
+  const double *px = x.begin();
+  for (std::size_t i = 0; i < y.size(); ++i)
+    py[i] -= px[i];
+}
+
+/// y *= s
+inline void scale(dealii::Vector<double> &y, double s)
+{
+  for (double &e : y)
+    e *= s;
+}
+
+/// y = 0
+inline void zero(dealii::Vector<double> &y)
+{
+  std::fill(y.begin(), y.end(), 0.);
+}
+
+/// y = x (y reallocated only when the sizes differ)
+inline void copy(dealii::Vector<double> &y, const dealii::Vector<double> &x)
+{
+  if (y.size() != x.size())
+    y.reinit(x.size(), true);
+  std::copy(x.begin(), x.end(), y.begin());
+}
+
+/// y = 0 with size n (reallocated only when the size changes)
+inline void zero(dealii::Vector<double> &y, std::size_t n)
+{
+  if (y.size() != n)
+    y.reinit(n);
+  else
+    zero(y);
+}
+} // namespace anisodwr::short_vectors
