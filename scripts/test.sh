@@ -10,7 +10,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 
 # the unit tests both extra stages run (test names, ctest -R)
 UNIT_TARGETS="test_temporal_basis test_slab test_operators test_estimator test_probes test_refinement"
-UNIT_TESTS="TemporalBasis|Slab|Exactness|Lifts|Restriction|RadauReconstruction|ExactGoal|Localization|Estimator|HemkerMesh|Probes|Marking|Closure"
+UNIT_TESTS="TemporalBasis|Slab|Exactness|Lifts|Restriction|RadauReconstruction|ExactGoal|Localization|Estimator|ShortVectors|HemkerMesh|Probes|Marking|Closure"
 
 DEBUG=${ANISODWR_DEBUG_BUILD_DIR:-$ROOT/build-debug}
 if [ "${ANISODWR_SKIP_DEBUG:-0}" != 1 ]; then
