@@ -54,7 +54,8 @@ private:
   /// W-local z and u at the temporal nodes of slab n, z(t_n^+) and u(t_{n-1}^-).
   void gather_slab(unsigned int n);
   /// eta_h,i on slab n; adds ||I_2h,i u - u||^2 over the slab to lift_size and the
-  /// primal and adjoint halves to ind.eta_h_rho, ind.eta_h_rhostar.
+  /// primal and adjoint halves to ind.eta_h_rho, ind.eta_h_rhostar; leaves
+  /// 1/2 rho(u)(z - R_i z) in half_rho_i.
   double directional_indicator(unsigned int i, unsigned int n, double tau, bool last,
                                double &lift_size, Indicators<dim> &ind);
   /// ez = E z - z (outside value z(t_n^+)), eu = E u - u (outside value u(t_{n-1}^-)).
@@ -95,6 +96,7 @@ private:
   std::vector<Vector<double>> zk, uk, vk;
   Vector<double> z_next, u_prev, tmp, vT, vz, vu;
   SlabFunction z, u, Rhz, Riz, dz, v, ez, eu;
+  double half_rho_i = 0; ///< 1/2 rho(u)(z - R_i z) of the last directional_indicator
   std::vector<LocalMap> lift;
   Vector<double> jt, jT;
 };
@@ -198,12 +200,16 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   // average of the two carries the full SUPG consistency term.
   supg_part += apply(supg, Rhz, false);
 
+  double split = 0; // sum_i rho(u)(z - R_i z)
   for (unsigned int i = 0; i < dim; ++i)
   {
     const double eta = directional_indicator(i, n, tau, last, lift_size[i], ind);
     cells.eta_h_cell[c][i] += eta;
     ind.eta_h[i] += eta;
+    split += 2 * half_rho_i;
   }
+  difference(z, Rhz, dz);
+  ind.eta_h_split_rest += split - apply(rho, dz, false);
 
   reconstruction_errors(tau);
   // J_T(E u - u) at T: 0 for the Radau reconstruction (E u - u vanishes at t_n)
@@ -254,6 +260,7 @@ double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned in
   transform(ops.restriction(i), Riz);
   difference(z, Riz, dz);
   const double half_rho = 0.5 * apply(rho, dz, false);
+  half_rho_i = half_rho;
   ind.eta_h_rho += half_rho;
   if (space_indicator == SpaceIndicator::primal_residual)
     return 2 * half_rho;
@@ -402,7 +409,7 @@ void allreduce_chunks(std::vector<Indicators<dim>> &sums, Indicators<dim> &ind)
       for (auto &e : s.eta_h)
         visit(e);
       for (double *e : {&s.eta_tau, &s.eta_tau_rho, &s.eta_tau_rhostar, &s.eta_h_rho,
-                        &s.eta_h_rhostar, &s.eta_h_supg})
+                        &s.eta_h_rhostar, &s.eta_h_supg, &s.eta_h_split_rest})
         visit(*e);
       double no_lift = s.no_lift;
       visit(no_lift);
@@ -528,6 +535,7 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
     ind.eta_h_rho += s.eta_h_rho;
     ind.eta_h_rhostar += s.eta_h_rhostar;
     ind.eta_h_supg += s.eta_h_supg;
+    ind.eta_h_split_rest += s.eta_h_split_rest;
     ind.no_lift += s.no_lift;
   }
   return ind;

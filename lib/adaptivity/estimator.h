@@ -57,6 +57,10 @@ template <int dim> struct Indicators
   /// half 1/2 rho*(u, R_h z)(I_2h,i u - u) + 1/2 S'(..) (cells with a lift only) and the
   /// SUPG consistency term S(u)(R_h z)
   double eta_h_rho = 0, eta_h_rhostar = 0, eta_h_supg = 0;
+  /// what the directional split adds to the primal residual's weight:
+  /// sum_i rho(u)(z - R_i z) - rho(u)(z - R_h z) (= rho(u)((I - R_1)(I - R_2) z) in 2D),
+  /// the mixed-direction remainder that doc/method.md §8 does not keep
+  double eta_h_split_rest = 0;
   /// (cell, direction) pairs without a directional lift (no adjoint half there)
   unsigned int no_lift = 0;
   double eta_h_total() const
@@ -96,6 +100,7 @@ void add_scaled(Indicators<dim> &sum, double w, const Indicators<dim> &x)
   sum.eta_h_rho += w * x.eta_h_rho;
   sum.eta_h_rhostar += w * x.eta_h_rhostar;
   sum.eta_h_supg += w * x.eta_h_supg;
+  sum.eta_h_split_rest += w * x.eta_h_split_rest;
   sum.no_lift = x.no_lift;
 }
 

@@ -60,10 +60,11 @@ std::vector<double> LoopRow::all_values() const
       v.push_back(g < eta_goal_parts.size() ? eta_goal_parts[g][part] : nan);
   for (std::size_t g = 0; g < J_goal.size(); ++g)
     v.push_back(g < err_tau_goal.size() ? err_tau_goal[g] : nan);
-  v.insert(v.end(), {eta_tau_rho, eta_tau_rhostar, err_tau, err_tau_order,
-                     double(marking[0]), double(marking[1]), double(marking[2]),
-                     double(marking[3]), double(marking[4]), mem_estimate, eta_h_rho,
-                     eta_h_rhostar, eta_h_supg, no_lift, lu_primal_mb, lu_adjoint_mb, concurrent});
+  v.insert(v.end(),
+           {eta_tau_rho, eta_tau_rhostar, err_tau, err_tau_order, double(marking[0]),
+            double(marking[1]), double(marking[2]), double(marking[3]),
+            double(marking[4]), mem_estimate, eta_h_rho, eta_h_rhostar, eta_h_supg,
+            no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest});
   return v;
 }
 
@@ -91,7 +92,7 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
            {"eta_tau_rho", "eta_tau_rhostar", "err_tau", "err_tau_order", "marked",
             "marked_x", "marked_y", "marked_xy", "closure", "memory_estimate_mb",
             "eta_h_rho", "eta_h_rhostar", "eta_h_supg", "no_lift", "lu_primal_mb",
-            "lu_adjoint_mb", "concurrent"});
+            "lu_adjoint_mb", "concurrent", "eta_h_split_rest"});
   return c;
 }
 

@@ -120,6 +120,7 @@ void copy_indicators(const Indicators<2> &ind, LoopRow &row)
   row.eta_h_rho = ind.eta_h_rho;
   row.eta_h_rhostar = ind.eta_h_rhostar;
   row.eta_h_supg = ind.eta_h_supg;
+  row.eta_h_split_rest = ind.eta_h_split_rest;
   row.no_lift = ind.no_lift;
 }
 
