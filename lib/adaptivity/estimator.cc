@@ -54,10 +54,10 @@ private:
   /// W-local z and u at the temporal nodes of slab n, z(t_n^+) and u(t_{n-1}^-).
   void gather_slab(unsigned int n);
   /// eta_h,i on slab n; adds ||I_2h,i u - u||^2 over the slab to lift_size and the
-  /// primal and adjoint halves to ind.eta_h_rho, ind.eta_h_rhostar; leaves
-  /// 1/2 rho(u)(z - R_i z) in half_rho_i.
+  /// primal and adjoint halves to ind.eta_h_rho, ind.eta_h_rhostar; sets half_rho to
+  /// the primal half 1/2 rho(u)(z - R_i z).
   double directional_indicator(unsigned int i, unsigned int n, double tau, bool last,
-                               double &lift_size, Indicators<dim> &ind);
+                               double &lift_size, double &half_rho, Indicators<dim> &ind);
   /// ez = E z - z (outside value z(t_n^+)), eu = E u - u (outside value u(t_{n-1}^-)).
   void reconstruction_errors(double tau);
   /// eu = u_r+1 - u (values and derivatives at the Gauss points, the jump at t_{n-1});
@@ -96,7 +96,6 @@ private:
   std::vector<Vector<double>> zk, uk, vk;
   Vector<double> z_next, u_prev, tmp, vT, vz, vu;
   SlabFunction z, u, Rhz, Riz, dz, v, ez, eu;
-  double half_rho_i = 0; ///< 1/2 rho(u)(z - R_i z) of the last directional_indicator
   std::vector<LocalMap> lift;
   Vector<double> jt, jT;
 };
@@ -203,10 +202,12 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   double split = 0; // sum_i rho(u)(z - R_i z)
   for (unsigned int i = 0; i < dim; ++i)
   {
-    const double eta = directional_indicator(i, n, tau, last, lift_size[i], ind);
+    double half_rho;
+    const double eta =
+        directional_indicator(i, n, tau, last, lift_size[i], half_rho, ind);
     cells.eta_h_cell[c][i] += eta;
     ind.eta_h[i] += eta;
-    split += 2 * half_rho_i;
+    split += 2 * half_rho;
   }
   difference(z, Rhz, dz);
   ind.eta_h_split_rest += split - apply(rho, dz, false);
@@ -253,14 +254,13 @@ template <int dim> void IndicatorAssembly<dim>::gather_slab(unsigned int n)
 template <int dim>
 double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned int n,
                                                      double tau, bool last,
-                                                     double &lift_size,
+                                                     double &lift_size, double &half_rho,
                                                      Indicators<dim> &ind)
 {
   assign(z, Riz);
   transform(ops.restriction(i), Riz);
   difference(z, Riz, dz);
-  const double half_rho = 0.5 * apply(rho, dz, false);
-  half_rho_i = half_rho;
+  half_rho = 0.5 * apply(rho, dz, false);
   ind.eta_h_rho += half_rho;
   if (space_indicator == SpaceIndicator::primal_residual)
     return 2 * half_rho;

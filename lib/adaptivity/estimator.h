@@ -59,7 +59,7 @@ template <int dim> struct Indicators
   double eta_h_rho = 0, eta_h_rhostar = 0, eta_h_supg = 0;
   /// what the directional split adds to the primal residual's weight:
   /// sum_i rho(u)(z - R_i z) - rho(u)(z - R_h z) (= rho(u)((I - R_1)(I - R_2) z) in 2D),
-  /// the mixed-direction remainder that doc/method.md §8 does not keep
+  /// the mixed-direction remainder that doc/method.md §6 does not keep
   double eta_h_split_rest = 0;
   /// (cell, direction) pairs without a directional lift (no adjoint half there)
   unsigned int no_lift = 0;
