@@ -14,6 +14,14 @@ $charts convergence "$tmp/png/convergence.png" "$tmp/conv/convergence.csv=dG(1)"
 $charts goal-values "$tmp/png/goals.png" "$tmp/hemker" || fail=1
 $charts compare-cut "$tmp/png/compare.png" normal -1 "$tmp/hemker=a" "$tmp/hemker=b" || fail=1
 $charts mesh "$tmp/png/mesh_u.png" "$tmp/hemker" 2 u -1.5 1.5 -1.5 1.5 || fail=1
+# first_cell.py: one row per loop; hemker's cell at x_Gamma is cut across the layer
+# after loop 1 (its normal indicator is 600 times its tangential one), so loop 2's cell
+# is half as thick along the normal.
+rows=$(/usr/bin/python3 "$src/postprocess/first_cell.py" "$tmp/hemker" | tail -n +3)
+echo "$rows"
+echo "$rows" | awk -F'|' 'NR == 1 { h1 = $4 } NR == 2 { h2 = $4 }
+  END { exit !(NR == 2 && h2 > 0 && (h1 / h2 - 2) ^ 2 < 1e-4) }' \
+  && echo "ok: first_cell.py" || { echo "FAIL: first_cell.py"; fail=1; }
 for f in hemker_history hemker_mesh_0002 hemker_cutlines hump_history work_precision \
   convergence goals mesh_u compare; do
   png="$tmp/png/$f.png"
