@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Reliability of the command line: goals checked against the domain, malformed config
 # files, the output directory lock, atomic summary.json with status interrupted,
-# one-line solver failures, out of memory and a blow-up of the discretization. Every
-# run is limited to 20 s (the blow-up: 60 s).
+# one-line solver failures, out of memory, the tolerance stop and a blow-up of the
+# discretization. Every run is limited to 20 s (the blow-up: 60 s).
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
 cfg=$src/config/moving_hump.json
 hemker=$src/config/hemker.json
@@ -98,6 +98,33 @@ if [ -e "$d/loop-0009.vtu" ] || [ ! -e "$d/notes.txt" ] || [ -e "$d/summary.json
 else
   echo "ok: files of the previous run removed, other files kept"
 fi
+
+# adaptivity.tolerance: with tolerance_measure = eta the paper setting stops after loop
+# 1, whose signed parts cancel (|eta| = 0.199 < 0.2 while the J error is 0.75); with
+# parts (the default) it stops at the first loop whose unsigned parts are below 0.2.
+# Each run: the last loop's measure is below the tolerance, every earlier one is not;
+# eta_abs is |eta_h,x| + |eta_h,y| + |eta_tau| (to the 8 digits of loops.csv) and >= |eta|.
+for measure in eta parts; do
+  d=$tmp/tolerance_$measure
+  expect 0 "stopped: tolerance" -- run "$src/config/moving_hump_paper.json" --output "$d" \
+    --set adaptivity.loops=12 --set adaptivity.tolerance=0.2 \
+    --set adaptivity.tolerance_measure=$measure
+  if ! /usr/bin/python3 - "$d/loops.csv" "$measure" <<'PY'; then
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+key = "eta_tauh" if sys.argv[2] == "eta" else "eta_abs"
+m = [abs(float(r[key])) for r in rows]
+parts = [abs(float(r["eta_hx"])) + abs(float(r["eta_hy"])) + abs(float(r["eta_tau"])) for r in rows]
+ok = m[-1] < 0.2 and all(v >= 0.2 for v in m[:-1])
+ok = ok and all(abs(a - b) <= 1e-6 * b for a, b in zip((float(r["eta_abs"]) for r in rows), parts))
+ok = ok and all(float(r["eta_abs"]) >= abs(float(r["eta_tauh"])) for r in rows)
+ok = ok and len(rows) == (1 if sys.argv[2] == "eta" else 6)
+print(("ok" if ok else "FAIL") + f": tolerance_measure = {sys.argv[2]} stops after loop {len(rows)}, {key} = {m}")
+sys.exit(0 if ok else 1)
+PY
+    fail=1
+  fi
+done
 
 # a blow-up (slabs shorter than delta_K without the bound delta_K <= tau_n) stops the run
 # with exit 3, naming the loop and slab, and the loops before it stay on disk

@@ -22,7 +22,8 @@ reals="scene.epsilon scene.end_time discretization.delta0 solver.tolerance solve
   adaptivity.theta_h adaptivity.theta_tau adaptivity.theta_coarsen adaptivity.tolerance
   goal.radius solver.auto_threshold adaptivity.max_dofs"
 choices="scene.name discretization.supg_length solver.type solver.krylov solver.preconditioner
-  solver.fallback study.mode study.refine goal.kind adaptivity.mode adaptivity.marking"
+  solver.fallback study.mode study.refine goal.kind adaptivity.mode adaptivity.marking
+  adaptivity.tolerance_measure"
 bools="solver.reuse_factorization goal.over_time output.progress"
 for k in $ints; do
   for v in -1 abc 1.5 99999999999 '' nan; do check "$k" -- "$cfg" --set "$k=$v"; done

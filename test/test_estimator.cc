@@ -7,6 +7,7 @@
 #include "adaptivity/estimator.h"
 #include "adaptivity/short_vectors.h"
 #include "config/parameters.h"
+#include "io/loop_report.h"
 #include "slab/adjoint_march.h"
 #include "slab/primal_march.h"
 #include "study/options.h"
@@ -500,4 +501,27 @@ TEST(ShortVectors, BitIdenticalToDealII)
   // a plain left-to-right sum differs from deal.II's order on these data, so the
   // checks above see the order
   EXPECT_GT(order_matters, 50u);
+}
+
+// adaptivity.tolerance_measure = parts: |eta_h,x| + |eta_h,y| + |eta_tau| of the weighted
+// goal, or, when every goal has its own parts, sum_i |w_i| (|parts of goal i|); never
+// below |eta_tau h| = |sum_i w_i eta_i|.
+TEST(LoopRow, EtaPartsAbsSumsUnsignedPartsPerGoal)
+{
+  LoopRow row;
+  row.eta_h = {{0.3, -0.5}};
+  row.eta_tau = 0.1;
+  row.eta_h_total = -0.2;
+  EXPECT_DOUBLE_EQ(row.eta_parts_abs(), 0.9);
+  row.weights = {1., -2.};
+  row.eta_goal_parts = {{{1., -2., 0.5}}, {{-0.25, 0.25, 1.}}};
+  // the weighted goal's eta: 1 (1 - 2 + 0.5) - 2 (-0.25 + 0.25 + 1) = -2.5
+  row.eta_h = {{1. + 0.5, -2. - 0.5}};
+  row.eta_tau = 0.5 - 2.;
+  row.eta_h_total = row.eta_h[0] + row.eta_h[1];
+  EXPECT_DOUBLE_EQ(row.eta_h_total + row.eta_tau, -2.5);
+  EXPECT_DOUBLE_EQ(row.eta_parts_abs(), 3.5 + 2. * 1.5);
+  // parts of some goals only: the weighted goal's parts
+  row.eta_goal_parts.pop_back();
+  EXPECT_DOUBLE_EQ(row.eta_parts_abs(), 1.5 + 2.5 + 1.5);
 }

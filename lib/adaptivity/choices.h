@@ -1,6 +1,6 @@
 #pragma once
 // The choice-valued options of the adaptivity section (adaptivity.mode, .marking,
-// .time_indicator, .space_indicator, .adjoint_stabilization), each with its name table
+// .time_indicator, .space_indicator, .adjoint_stabilization, .tolerance_measure), each with its name table
 // (base/choice.h); light, so that config/parameters.h can hold them.
 #include "base/choice.h"
 
@@ -35,6 +35,24 @@ enum class SpaceIndicator
   /// no lift of u (exact up to z ~ z_tau h and the directional split)
   primal_residual
 };
+
+/// adaptivity.tolerance_measure: what adaptivity.tolerance is compared with.
+enum class ToleranceMeasure
+{
+  /// |eta_tau h|, the signed sum of all indicators
+  eta,
+  /// LoopRow::eta_parts_abs(): |eta_h,x| + |eta_h,y| + |eta_tau| without signs, per goal
+  /// where each goal has its own estimate; cancellation between the parts or between
+  /// the goals cannot make it small
+  parts
+};
+
+inline const std::vector<Named<ToleranceMeasure>> &names(ToleranceMeasure)
+{
+  static const std::vector<Named<ToleranceMeasure>> table{{ToleranceMeasure::eta, "eta"},
+                                                          {ToleranceMeasure::parts, "parts"}};
+  return table;
+}
 
 inline const std::vector<Named<TimeIndicator>> &names(TimeIndicator)
 {

@@ -334,7 +334,15 @@ std::vector<Entry> adaptivity_entries()
        "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1].",
        "a fraction in [0, 1]", Check::fraction},
       {"adaptivity", "tolerance", "0", m(&S::tolerance), real(0.),
-       "Stop when |eta_tau_h| < tolerance (0: no tolerance)."},
+       "Stop when the estimate named by adaptivity.tolerance_measure is below tolerance "
+       "(0: no tolerance)."},
+      {"adaptivity", "tolerance_measure", "parts", m(&S::tolerance_measure), by_name,
+       "What adaptivity.tolerance bounds. eta: |eta_tau_h|, the signed sum of all "
+       "indicators; parts: |eta_h,x| + |eta_h,y| + |eta_tau| without signs, and with one "
+       "estimate per goal (per_goal_estimates, goal.weights = estimate) the sum over the "
+       "goals of |w_i| times each goal's parts (loops.csv eta_abs). The signed parts "
+       "cancel on coarse meshes (doc/results.md), so eta can stop a run whose error is "
+       "many times the tolerance; parts is never below eta."},
       {"adaptivity", "max_dofs", "0", m(&S::max_dofs), real(0.),
        "Stop before a loop whose N_tot would exceed this (0: no budget)."},
       {"adaptivity", "max_memory_mb", "0", m(&S::max_memory_mb), real(0.),

@@ -136,6 +136,7 @@ struct AdaptivitySection
   double theta_tau = 0.2;
   double theta_coarsen = 0.;
   double tolerance = 0.;
+  ToleranceMeasure tolerance_measure = ToleranceMeasure::parts;
   double max_dofs = 0.;
   double max_memory_mb = 0.;
   double max_wall_time = 0.; ///< s; 0: no budget

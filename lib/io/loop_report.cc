@@ -64,8 +64,20 @@ std::vector<double> LoopRow::all_values() const
            {eta_tau_rho, eta_tau_rhostar, err_tau, err_tau_order, double(marking[0]),
             double(marking[1]), double(marking[2]), double(marking[3]),
             double(marking[4]), mem_estimate, eta_h_rho, eta_h_rhostar, eta_h_supg,
-            no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest});
+            no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest,
+            eta_parts_abs()});
   return v;
+}
+
+double LoopRow::eta_parts_abs() const
+{
+  if (eta_goal_parts.empty() || eta_goal_parts.size() != weights.size())
+    return std::abs(eta_h[0]) + std::abs(eta_h[1]) + std::abs(eta_tau);
+  double sum = 0;
+  for (std::size_t g = 0; g < weights.size(); ++g)
+    for (const double part : eta_goal_parts[g])
+      sum += std::abs(weights[g] * part);
+  return sum;
 }
 
 /// Columns after `columns` in loops.csv: the signed error J_i(u) - J_i(u_tau h) of each
@@ -79,8 +91,9 @@ std::vector<double> LoopRow::all_values() const
 /// both, and flagged or extended by the closure; the loop's memory estimate; last the
 /// parts of eta_h (1/2 rho(u)(z - R_i z), the adjoint half, S(u)(R_h z), summed over
 /// directions), the number of (cell, direction) pairs without a lift and the UMFPACK
-/// factor sizes of the primal and adjoint slab matrices (MB), and whether the primal and
-/// the adjoint marched concurrently (1/0).
+/// factor sizes of the primal and adjoint slab matrices (MB), whether the primal and
+/// the adjoint marched concurrently (1/0), the remainder of the directional split and
+/// LoopRow::eta_parts_abs().
 std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names)
 {
   auto c = columns;
@@ -92,7 +105,7 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
            {"eta_tau_rho", "eta_tau_rhostar", "err_tau", "err_tau_order", "marked",
             "marked_x", "marked_y", "marked_xy", "closure", "memory_estimate_mb",
             "eta_h_rho", "eta_h_rhostar", "eta_h_supg", "no_lift", "lu_primal_mb",
-            "lu_adjoint_mb", "concurrent", "eta_h_split_rest"});
+            "lu_adjoint_mb", "concurrent", "eta_h_split_rest", "eta_abs"});
   return c;
 }
 

@@ -56,6 +56,10 @@ struct LoopRow
   double u_min = 0, u_max = 0;
   double J_error() const { return std::abs(J_exact - J); }
   double I_eff() const { return std::abs((eta_h_total + eta_tau) / (J_exact - J)); }
+  /// |eta_h,x| + |eta_h,y| + |eta_tau| without signs: per goal, weighted by |w_i|, when
+  /// every goal has its own parts (eta_goal_parts), else of the weighted goal. Never
+  /// below |eta_tau h| (eta_tau h = sum_i w_i eta_i); loops.csv column eta_abs.
+  double eta_parts_abs() const;
   /// The first 18 columns of loop_columns.
   std::vector<double> values() const;
   /// values() followed by the columns loop_columns adds for the goals

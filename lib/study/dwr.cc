@@ -639,8 +639,10 @@ bool AdaptiveLoop::stop_after(const LoopRow &row)
 {
   if (row.loop == prm.adaptivity.loops)
     return true;
-  if (prm.adaptivity.tolerance > 0 &&
-      std::abs(row.eta_h_total + row.eta_tau) < prm.adaptivity.tolerance)
+  const double estimate = prm.adaptivity.tolerance_measure == ToleranceMeasure::parts
+                             ? row.eta_parts_abs()
+                             : std::abs(row.eta_h_total + row.eta_tau);
+  if (prm.adaptivity.tolerance > 0 && estimate < prm.adaptivity.tolerance)
   {
     stop_reason = "tolerance";
     return true;
