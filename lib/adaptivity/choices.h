@@ -1,7 +1,7 @@
 #pragma once
 // The choice-valued options of the adaptivity section (adaptivity.mode, .marking,
-// .time_indicator, .space_indicator, .adjoint_stabilization, .tolerance_measure), each with its name table
-// (base/choice.h); light, so that config/parameters.h can hold them.
+// .time_indicator, .space_indicator, .adjoint_stabilization, .tolerance_measure), each
+// with its name table (base/choice.h); light, so that config/parameters.h can hold them.
 #include "base/choice.h"
 
 namespace anisodwr
