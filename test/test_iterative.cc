@@ -227,11 +227,26 @@ TEST(Iterative, AutoPicksBySlabSizeWhenEachSlabIsFactorized)
   small.prepare(0., 0.05);
   EXPECT_FALSE(small.iterative());
   EXPECT_EQ(small.timings().n_factorizations, 1u);
-  // The config default is auto with a threshold of 1e6 slab unknowns.
+  // The config default is auto with the size threshold chosen by the spatial degree.
   const Parameters prm = Parameters::from_overrides({});
   EXPECT_EQ(prm.solver.type, SolverType::automatic);
   EXPECT_EQ(name(prm.solver.type), "auto");
-  EXPECT_EQ(slab_solver_options(prm).auto_threshold, 1e6);
+  const SlabSolverOptions d = slab_solver_options(prm);
+  EXPECT_EQ(d.auto_threshold, 0.);
+  EXPECT_EQ(auto_size_threshold(d, 1), 2e4);
+  EXPECT_EQ(auto_size_threshold(d, 2), 3e5);
+  EXPECT_EQ(auto_size_threshold(d, 3), 1e6);
+  EXPECT_EQ(auto_size_threshold(d, 4), 3e6);
+  EXPECT_EQ(auto_size_threshold(d, 6), 3e6);
+  EXPECT_EQ(auto_size_threshold(o, 1), o.auto_threshold); // a set value holds for all
+  // By degree, the same Q1 slab (4 N_space unknowns per node block) goes either way.
+  o.auto_threshold = 0.;
+  SlabOperator<2> by_degree(*s.space, basis, o);
+  by_degree.prepare(0., 0.05);
+  EXPECT_EQ(by_degree.iterative(), 4. * s.space->n_dofs() >= 2e4) << by_degree.auto_choice();
+  EXPECT_EQ(auto_picks_iterative(o, 1e4, 2, 1, false), true);  // 2e4 >= 2e4 (Q1)
+  EXPECT_EQ(auto_picks_iterative(o, 1e4, 2, 2, false), false); // 2e4 < 3e5 (Q2)
+  EXPECT_EQ(auto_picks_iterative(o, 1e4, 2, 1, true), false);  // one factorization serves
 }
 
 TEST(Iterative, AutoUsesUmfpackWhileItsPredictedPeakFits)

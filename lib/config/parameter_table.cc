@@ -187,10 +187,13 @@ std::vector<Entry> solver_entries()
        "Direct solves: iterative refinement steps per solve (UMFPACK's own "
        "default is 2). Each step costs a residual and a further solve; on the slab "
        "systems the solution changes only in the last digits (doc/results.md)."},
-      {"solver", "auto_threshold", "1e6", m(&S::auto_threshold), real(0.),
+      {"solver", "auto_threshold", "0", m(&S::auto_threshold), real(0.),
        "solver.type = auto with a factorization per slab (coefficients that depend on "
        "time, or no reuse): iterative if also N_space (r+1)^2 (slab unknowns times the "
-       "temporal block size, which UMFPACK's cost follows) reaches this."},
+       "temporal block size, which UMFPACK's cost follows) reaches this; 0 = by the "
+       "spatial degree of the system: 2e4 (Q1), 3e5 (Q2), 1e6 (Q3), 3e6 (Q4 and up), "
+       "where the Krylov solver's factorization-plus-solve time per slab overtakes "
+       "UMFPACK's (doc/results.md)."},
       {"solver", "auto_memory_mb", "0", m(&S::auto_memory_mb), real(0.),
        "solver.type = auto: the largest predicted UMFPACK factorization peak (MB) solved "
        "directly (extrapolated from the last measured factorization of the same degree "

@@ -88,15 +88,26 @@ double auto_memory_budget_mb(const SlabSolverOptions &opt)
   return opt.auto_memory_mb > 0 ? opt.auto_memory_mb : physical_memory_mb() / 2.;
 }
 
+double auto_size_threshold(const SlabSolverOptions &opt, unsigned int degree)
+{
+  if (opt.auto_threshold > 0.)
+    return opt.auto_threshold;
+  // Measured with OpenBLAS (r = 1, moving hump slabs): Q1 iterative 1.5-5x faster from
+  // 4e3 on; Q2 even at 2.6e5, 1.8-1.9x faster at 1.05e6; the Q4 adjoint 0.37x at 2.6e5
+  // (its ILUs are dense). Q3 lies between; beyond Q4 the Q4 value is kept.
+  static constexpr double by_degree[] = {2e4, 3e5, 1e6, 3e6};
+  return by_degree[std::min<unsigned int>(std::max(degree, 1u), 4u) - 1];
+}
+
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused)
 {
-  // UMFPACK factorizes once and back-substitutes per slab (3.7 s/slab against 20 s for
-  // the best Krylov solver at 2.1e6 unknowns; hemker loops 1-15 3x faster than the
-  // iterative path): while the factors fit, it wins.
+  // UMFPACK factorizes once and back-substitutes per slab (1 s/slab against 4.9 s for
+  // the best Krylov solver at 2.1e6 unknowns, even with the factorization amortized over
+  // 10 slabs): while the factors fit, it wins.
   if (predicted_lu_mb(n, degree, m) > auto_memory_budget_mb(opt))
     return true;
-  return !factorization_reused && n * m >= opt.auto_threshold;
+  return !factorization_reused && n * m >= auto_size_threshold(opt, degree);
 }
 
 bool releases_assembly_matrices(const SlabSolverOptions &options,
@@ -199,7 +210,8 @@ void SlabOperator<dim>::choose_solver(bool factorization_reused)
     choice = "iterative (" + memory + ")";
   else
     choice = "iterative (a factorization per slab, N_space (r+1)^2 = " +
-             std::to_string(long(n * m)) + " >= solver.auto_threshold)";
+             std::to_string(long(n * m)) + " >= solver.auto_threshold = " +
+             std::to_string(long(auto_size_threshold(opt, space.degree()))) + ")";
 }
 
 template <int dim>

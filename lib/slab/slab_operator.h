@@ -68,11 +68,18 @@ void reset_lu_records();
 /// solver.auto_memory_mb, or half the physical memory if that is 0.
 double auto_memory_budget_mb(const SlabSolverOptions &opt);
 
+/// The slab size N_space (r+1)^2 from which solver.type = auto solves iteratively when
+/// each slab needs its own factorization: solver.auto_threshold if it is positive, else
+/// by the spatial degree, where the best Krylov solver's factorization-plus-solve time
+/// per slab overtakes UMFPACK's (doc/results.md, "Slab solvers: UMFPACK versus Krylov"):
+/// 2e4 for Q1, 3e5 for Q2, 1e6 for Q3, 3e6 from Q4 on.
+double auto_size_threshold(const SlabSolverOptions &opt, unsigned int degree);
+
 /// Which solver solver.type = auto picks (true: iterative) for n slab unknowns with m
 /// temporal DoFs per node, given whether one factorization serves all slabs: iterative
 /// if predicted_lu_mb exceeds auto_memory_budget_mb, or if each slab needs its own
 /// factorization (time-dependent coefficients, reuse_factorization = false) and
-/// N_space m^2 >= auto_threshold; UMFPACK otherwise.
+/// N_space m^2 >= auto_size_threshold; UMFPACK otherwise.
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused);
 

@@ -50,8 +50,8 @@ struct SlabSolverOptions
   /// auto: UMFPACK while its predicted factorization peak (predicted_lu_mb) is at most
   /// auto_memory_mb (0: half the physical memory); with a factorization per slab
   /// (coefficients that depend on time, or no reuse) iterative from N_space (r+1)^2 >=
-  /// auto_threshold.
-  double auto_threshold = 1e6;
+  /// auto_threshold (0: by the spatial degree, auto_size_threshold).
+  double auto_threshold = 0.;
   double auto_memory_mb = 0.;
   Fallback fallback = Fallback::direct;
   IterativeOptions iterative;
