@@ -48,7 +48,7 @@ printf '{"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "0.5"}
 expect 2 "loc.json: invalid value '0.5' in key 'goal.locations'" -- run "$tmp/loc.json" --output "$(o)"
 
 # a failed direct solve: one line on stderr, the full text JSON-escaped in summary.json
-out=$(timeout 20 "$bin" run "$cfg" --output "$tmp/solve" --set adaptivity.loops=1 --set discretization.delta0=1e308 --set discretization.supg_tau_factor=0 2>&1 >/dev/null)
+out=$(timeout 20 "$bin" run "$cfg" --output "$tmp/solve" --set adaptivity.loops=1 --set discretization.delta0=1e308 --set discretization.supg_tau_factor=0 --set adaptivity.time_indicator=average 2>&1 >/dev/null)
 rc=$?
 if [ "$rc" != 3 ] || [ "$(wc -l <<<"$out")" != 1 ] || ! grep -q "slab solver failed: UMFPACK" <<<"$out" ||
   ! python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['status'].startswith('failed: loop 1') and '\n' in d['details']" "$tmp/solve/summary.json"; then
@@ -56,6 +56,17 @@ if [ "$rc" != 3 ] || [ "$(wc -l <<<"$out")" != 1 ] || ! grep -q "slab solver fai
   fail=1
 else
   echo "ok: failed direct solve -> 3: $out"
+fi
+
+# a combination that runs but misleads: one warning on stderr naming the keys, exit 0
+out=$(timeout 60 "$bin" run "$cfg" --output "$tmp/warn" --set adaptivity.loops=1 --set discretization.supg_tau_factor=0 2>&1 >/dev/null)
+rc=$?
+if [ "$rc" != 0 ] || [ "$(wc -l <<<"$out")" != 1 ] ||
+  ! grep -q "^anisodwr: warning: adaptivity.time_indicator = higher_order with .*discretization.supg_tau_factor = 0" <<<"$out"; then
+  echo "FAIL: unbounded SUPG with the higher-order eta_tau -> exit $rc, stderr: $out"
+  fail=1
+else
+  echo "ok: unbounded SUPG with the higher-order eta_tau warns: $out"
 fi
 
 # out of memory: exit 3 and summary.json

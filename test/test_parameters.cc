@@ -95,6 +95,24 @@ TEST(Parameters, Errors)
             std::string::npos);
 }
 
+TEST(Parameters, WarnsOfTheUnboundedSupgUnderTheHigherOrderTimeIndicator)
+{
+  const auto warnings = [](std::vector<std::string> o) {
+    return dwr_warnings(Parameters::from_overrides(o));
+  };
+  EXPECT_TRUE(warnings({}).empty());
+  EXPECT_TRUE(warnings({"adaptivity.time_indicator=higher_order"}).empty());
+  EXPECT_TRUE(warnings({"discretization.supg_tau_factor=0"}).empty()); // average form
+  const auto w = warnings(
+      {"adaptivity.time_indicator=higher_order", "discretization.supg_tau_factor=0"});
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("discretization.supg_tau_factor = 0"), std::string::npos) << w[0];
+  // without SUPG the bound does not matter
+  EXPECT_TRUE(warnings({"adaptivity.time_indicator=higher_order",
+                        "discretization.supg_tau_factor=0", "discretization.delta0=0"})
+                  .empty());
+}
+
 TEST(Parameters, DefaultsListEveryChoice)
 {
   std::ostringstream out;

@@ -286,6 +286,8 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
 void AdaptiveLoop::run()
 {
   summary("running", "", 0.);
+  for (const std::string &w : dwr_warnings(prm))
+    std::cerr << "anisodwr: warning: " << w << std::endl;
   std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.discretization.p
             << ")-dG(" << prm.discretization.r << "), adjoint cG(" << q << "), "
             << name(prm.adaptivity.mode) << ", goals:";

@@ -83,4 +83,21 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
                                                 : prm.discretization.delta0;
   return make_space_with(prm, scene, tria, degree, delta0, 1.);
 }
+std::vector<std::string> dwr_warnings(const Parameters &prm)
+{
+  std::vector<std::string> w;
+  const auto &d = prm.discretization;
+  // The dG(r+1) companion primal of this indicator marches the slabs with the primal's
+  // delta_K; without the bound delta_K <= c tau_n it is unstable on short slabs while
+  // dG(r) still looks fine (doc/results.md, "The higher-order eta_tau needs the SUPG
+  // bound").
+  if (prm.adaptivity.time_indicator == TimeIndicator::higher_order && d.delta0 > 0. &&
+      d.supg_tau_factor == 0.)
+    w.push_back("adaptivity.time_indicator = higher_order with discretization.delta0 > 0 "
+                "and discretization.supg_tau_factor = 0: the dG(r+1) primal behind eta_tau "
+                "is not stable on slabs shorter than delta_K, so eta_tau can be wrong by "
+                "orders of magnitude (measured on the moving hump: 2.7e-4 instead of "
+                "-4.5e-6); keep supg_tau_factor > 0 or use time_indicator = average");
+  return w;
+}
 } // namespace anisodwr
