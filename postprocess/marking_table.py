@@ -21,7 +21,7 @@ def main():
         prev = None
         for l, p in zip(loops, probes):
             n = float(l["N_space"])
-            y = float(p["layer_width"])
+            y = float(p["layer_width"] or "nan")  # empty: no 0.9/0.1 crossing
             rows.append({
                 "variant": v, "loop": int(l["loop"]), "N_space": int(n),
                 "growth": f"{n / prev:.2f}" if prev else "",
@@ -63,7 +63,8 @@ def main():
     for a in ax:
         a.grid(True, which="both", alpha=0.3)
     ax[0].legend()
-    fig.suptitle("hemker: marking strategies (θ_h = 1/3, 36 slabs, cG(1)-dG(0))")
+    fig.suptitle("hemker: marking strategies (θ_h = 1/3 of the cells, bulk_θ: θ of the "
+                 "summed indicators; 36 slabs, cG(1)-dG(0))")
     fig.tight_layout()
     fig.savefig(f"{out}/marking.png", dpi=110)
 

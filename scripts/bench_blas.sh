@@ -20,7 +20,7 @@ run() { # NAME CONFIG ARGS...
   "$BIN" run "$ROOT/config/$cfg" --output "$OUT/${name}_open" --set output.vtu_loops=0 \
     "$@" >"$OUT/${name}_open.log"
 }
-run hemker hemker.json --set adaptivity.loops=17
+run hemker hemker_count.json --set adaptivity.loops=17
 run hump moving_hump_p1.json --set adaptivity.loops=14
 /usr/bin/python3 - "$OUT" <<'PY'
 import csv, sys

@@ -2,7 +2,7 @@
 # Side-by-side timing of two anisodwr binaries on the same DWR config, run back to
 # back (A, B, A, B for REPEAT rounds; the minimum per phase counts), e.g. before/after
 # a change:  git worktree add /tmp/old REV && build /tmp/old, then
-#   scripts/bench_compare.sh /tmp/old/build/app/anisodwr build/app/anisodwr config/hemker.json \
+#   scripts/bench_compare.sh /tmp/old/build/app/anisodwr build/app/anisodwr config/hemker_count.json \
 #     --set adaptivity.loops=9
 # Prints, per phase (primal, adjoint, estimate) summed over the loops, A's and B's
 # seconds and A/B, the whole run's wall time (summary.json), and the peak memory (largest mem_peak over the loops, MB), and checks that both runs produced the same loops.csv numbers

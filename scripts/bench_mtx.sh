@@ -9,13 +9,13 @@
 # on the relative residual, at most 500 iterations, 3 right-hand sides per matrix.
 # Writes OUT/bench_mtx.csv and prints a Markdown table.
 # Usage: scripts/bench_mtx.sh [OUT]
-# Env: CASES = "config:loop ..." (default: hemker loops 10 12 14, moving hump 10 12),
+# Env: CASES = "config:loop ..." (default: hemker_count loops 10 12 14, moving hump 10 12),
 #      SOLVERS (default "umfpack mumps ilu1 ilu2 boomeramg air1 air2").
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=${ANISODWR_BUILD_DIR:-$ROOT/build}
 OUT=${1:-$ROOT/results/bench_mtx}
-CASES=${CASES:-"hemker:10 hemker:12 hemker:14 moving_hump:10 moving_hump:12"}
+CASES=${CASES:-"hemker_count:10 hemker_count:12 hemker_count:14 moving_hump:10 moving_hump:12"}
 SOLVERS=${SOLVERS:-"umfpack mumps ilu1 ilu2 boomeramg air1 air2"}
 mkdir -p "$OUT"
 CSV=$OUT/bench_mtx.csv

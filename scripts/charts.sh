@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the README's charts (doc/img/*.png) from the result tables of
 #   scripts/stability_study.sh          -> results/stability/
-#   anisodwr run config/hemker.json --set adaptivity.loops=60 --set adaptivity.max_wall_time=1800
+#   anisodwr run config/hemker_count.json --set adaptivity.loops=60 --set adaptivity.max_wall_time=1800
 #        --set adaptivity.max_memory_mb=23000 --set output.vtu_loops=2 --output results/hemker_30min_direct
 #   anisodwr run config/convergence_{time_r0..r3,space_p1..p4}.json
 # Charts whose inputs are missing are skipped with a message. Hemker meshes are drawn

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Memory estimate against the measured peak (VmHWM via getrusage): DWR loops of
-# config/moving_hump_p1.json (UMFPACK and Krylov) and config/hemker.json, and single runs of
+# config/moving_hump_p1.json (UMFPACK and Krylov) and config/hemker_count.json, and single runs of
 # the moving hump on uniform meshes. Each run in its own process, one after the other
 # (run it alone: the peak of a process is what it measures). Prints a markdown table
 # (run, loop or refinements, N_space, N_tot, measured MB, estimated MB, ratio) and
@@ -20,7 +20,7 @@ run() {
 run moving_hump_direct "$ROOT/config/moving_hump_p1.json" --set goal.weights=1 --set discretization.r=1 --set adaptivity.space_indicator=average --set adaptivity.loops=16 --set output.vtu_loops=0
 run moving_hump_krylov "$ROOT/config/moving_hump_p1.json" --set goal.weights=1 --set discretization.r=1 --set adaptivity.space_indicator=average --set adaptivity.loops=14 \
   --set solver.type=iterative --set output.vtu_loops=0
-run hemker "$ROOT/config/hemker.json" --set adaptivity.loops=17 --set output.vtu_loops=0
+run hemker "$ROOT/config/hemker_count.json" --set adaptivity.loops=17 --set output.vtu_loops=0
 for ref in 6 7 8; do
   run single_ref$ref "$ROOT/config/moving_hump_p1.json" --set study.mode=single \
     --set discretization.initial_refinements=$ref --set discretization.r=1 --set output.vtu_every=0

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Where methods fail: on hemker and moving_hump, one factor at a time from the reference
-# settings (config/hemker.json, config/moving_hump_paper.json):
+# settings (config/hemker_count.json, config/moving_hump_paper.json):
 #   (a) Galerkin (delta0 = 0) versus SUPG delta0 = 0.1 and 1, adaptive and on uniform
 #       meshes (equal DoFs by construction);
 #   (b) isotropic versus anisotropic adaptivity;
@@ -32,7 +32,7 @@ run() { # scene name config --set ...
 
 for scene in ${STUDY_SCENES:-hemker moving_hump}; do
   if [ "$scene" = hemker ]; then
-    config=hemker.json base=0.1 other=1
+    config=hemker_count.json base=0.1 other=1
   else
     config=moving_hump_paper.json base=1 other=0.1
   fi

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The chart script runs on small output directories (a 2-loop hemker DWR run with cells
+# The chart script runs on small output directories (a 2-loop hemker_count DWR run with cells
 # and cut lines, a 3-level convergence study) and writes non-empty PNG files.
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
-"$bin" run "$src/config/hemker.json" --output "$tmp/hemker" --set adaptivity.loops=2 \
+"$bin" run "$src/config/hemker_count.json" --output "$tmp/hemker" --set adaptivity.loops=2 \
   --set output.vtu_loops=1 >"$tmp/hemker.log" 2>&1 || { cat "$tmp/hemker.log"; exit 1; }
 "$bin" run "$src/config/moving_hump_paper.json" --output "$tmp/hump" --set adaptivity.loops=2 \
   >"$tmp/hump.log" 2>&1 || { cat "$tmp/hump.log"; exit 1; }

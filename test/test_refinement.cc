@@ -101,6 +101,49 @@ TEST(Marking, JointMarkingTakesTheWeakDirectionOfStrongCellsFirst)
   EXPECT_EQ(s.cut_both, 1u);
 }
 
+TEST(Marking, BulkCriterionMarksTheFewestCellsThatCarryTheFraction)
+{
+  // cell sums 2, 1, 0.5, 0.3, 0.2, 0 (total 4): theta 0.5 needs the first cell only,
+  // 0.75 the first two (3 >= 3), 0.8 the first three; count would take ceil(theta 6)
+  const std::vector<std::array<double, 2>> eta{
+      {{-1.5, 0.5}}, {{0.1, 0.9}}, {{0.3, -0.2}}, {{0.3, 0.}}, {{0., 0.2}}, {{0., 0.}}};
+  for (const auto &[theta, expected] :
+       std::vector<std::pair<double, unsigned int>>{{0.5, 1}, {0.75, 2}, {0.8, 3},
+                                                    {1., 5}, {0., 0}})
+  {
+    Triangulation<2> tria;
+    GridGenerator::subdivided_hyper_rectangle(tria, {6, 1}, Point<2>(0, 0),
+                                              Point<2>(6, 1));
+    MarkingOptions opt;
+    opt.marking = Marking::cell;
+    opt.criterion = MarkingCriterion::bulk;
+    opt.theta_h = theta;
+    opt.kappa = 0.5;
+    const MarkingStats s = mark_cells(tria, indicators(eta), opt);
+    const auto f = flags(tria);
+    EXPECT_EQ(s.marked, expected) << "theta " << theta;
+    for (unsigned int c = 0; c < 6; ++c)
+      EXPECT_EQ(f[c] != RefinementCase<2>::no_refinement, c < expected)
+          << "theta " << theta << ", cell " << c;
+    if (expected >= 2)
+    {
+      EXPECT_EQ(f[1], RefinementCase<2>::cut_y) << "kappa still chooses the directions";
+    }
+  }
+  // the same criterion over the per-direction rankings: x sums 2.2 (1.5 first), y 1.8
+  Triangulation<2> tria;
+  GridGenerator::subdivided_hyper_rectangle(tria, {6, 1}, Point<2>(0, 0), Point<2>(6, 1));
+  MarkingOptions opt;
+  opt.marking = Marking::per_direction;
+  opt.criterion = MarkingCriterion::bulk;
+  opt.theta_h = 0.5; // x: cell 0 (1.5 >= 1.1); y: cell 1 (0.9 >= 0.9)
+  mark_cells(tria, indicators(eta), opt);
+  const auto f = flags(tria);
+  EXPECT_EQ(f[0], RefinementCase<2>::cut_x);
+  EXPECT_EQ(f[1], RefinementCase<2>::cut_y);
+  EXPECT_EQ(f[2], RefinementCase<2>::no_refinement);
+}
+
 namespace
 {
 /// Two unit cells side by side: L = [0,1]x[0,1], R = [1,2]x[0,1]. L is refined

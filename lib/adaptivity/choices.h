@@ -105,6 +105,23 @@ inline const std::vector<Named<Marking>> &names(Marking)
   return table;
 }
 
+/// adaptivity.marking_criterion: how many cells (or pairs) theta_h selects.
+enum class MarkingCriterion
+{
+  /// the ceil(theta_h n) largest indicators (fixed fraction of the count)
+  count,
+  /// bulk (Doerfler) criterion: the fewest largest indicators whose sum reaches
+  /// theta_h times the sum of all; few cells where the indicators are concentrated
+  bulk
+};
+
+inline const std::vector<Named<MarkingCriterion>> &names(MarkingCriterion)
+{
+  static const std::vector<Named<MarkingCriterion>> table{
+      {MarkingCriterion::count, "count"}, {MarkingCriterion::bulk, "bulk"}};
+  return table;
+}
+
 /// adaptivity.adjoint_stabilization: the adjoint's discretization.
 enum class AdjointStabilization
 {

@@ -29,6 +29,32 @@ std::vector<unsigned int> largest(const std::vector<double> &v, double theta)
   return order;
 }
 
+/// Indices of the fewest largest values (v >= 0) whose sum reaches theta sum(v), the
+/// bulk (Doerfler) criterion; none if theta = 0 or every value is 0.
+std::vector<unsigned int> bulk(const std::vector<double> &v, double theta)
+{
+  std::vector<unsigned int> order(v.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(),
+            [&](unsigned int a, unsigned int b) { return v[a] > v[b]; });
+  const double goal = theta * std::accumulate(v.begin(), v.end(), 0.);
+  double sum = 0;
+  std::size_t k = 0;
+  // a relative slack so that theta = 1 selects every nonzero value despite rounding
+  while (k < order.size() && sum < goal * (1 - 1e-12) && v[order[k]] > 0)
+    sum += v[order[k++]];
+  order.resize(k);
+  return order;
+}
+
+/// The marked indices by options.criterion (count or bulk) with fraction theta_h.
+std::vector<unsigned int> selected(const std::vector<double> &v,
+                                   const MarkingOptions &options)
+{
+  return options.criterion == MarkingCriterion::bulk ? bulk(v, options.theta_h)
+                                                     : largest(v, options.theta_h);
+}
+
 /// The refinement case of each active cell from the directional indicators
 /// (adaptivity.mode and adaptivity.marking), before the mesh closure; n active cells.
 template <int dim>
@@ -45,7 +71,7 @@ std::vector<RefinementCase<dim>> refinement_cases(unsigned int n,
     for (unsigned int c = 0; c < n; ++c)
       eta[c] = std::abs(
           std::accumulate(ind.eta_h_cell[c].begin(), ind.eta_h_cell[c].end(), 0.));
-    for (unsigned int c : largest(eta, options.theta_h))
+    for (unsigned int c : selected(eta, options))
       cut[c] = RefinementCase<dim>::isotropic_refinement;
   }
   else if (options.marking == Marking::joint)
@@ -55,7 +81,7 @@ std::vector<RefinementCase<dim>> refinement_cases(unsigned int n,
     for (unsigned int c = 0; c < n; ++c)
       for (unsigned int i = 0; i < dim; ++i)
         eta[c * dim + i] = std::abs(ind.eta_h_cell[c][i]);
-    for (unsigned int ci : largest(eta, options.theta_h))
+    for (unsigned int ci : selected(eta, options))
       cut[ci / dim] = cut[ci / dim] | RefinementCase<dim>::cut_axis(ci % dim);
   }
   else if (options.marking == Marking::cell)
@@ -64,7 +90,7 @@ std::vector<RefinementCase<dim>> refinement_cases(unsigned int n,
     for (unsigned int c = 0; c < n; ++c)
       for (unsigned int i = 0; i < dim; ++i)
         eta[c] += std::abs(ind.eta_h_cell[c][i]);
-    for (unsigned int c : largest(eta, options.theta_h))
+    for (unsigned int c : selected(eta, options))
     {
       double strongest = 0;
       for (unsigned int i = 0; i < dim; ++i)
@@ -80,7 +106,7 @@ std::vector<RefinementCase<dim>> refinement_cases(unsigned int n,
       std::vector<double> eta(n);
       for (unsigned int c = 0; c < n; ++c)
         eta[c] = std::abs(ind.eta_h_cell[c][i]);
-      for (unsigned int c : largest(eta, options.theta_h))
+      for (unsigned int c : selected(eta, options))
         cut[c] = cut[c] | RefinementCase<dim>::cut_axis(i);
     }
   return cut;

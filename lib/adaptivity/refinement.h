@@ -26,6 +26,8 @@ struct MarkingOptions
   /// cut in direction i iff |eta_h,i^K| >= kappa * max_j |eta_h,j^K| (the directions
   /// the cell needs, not every direction whose pair passed a global threshold).
   Marking marking = Marking::cell;
+  /// count: theta_h is a fraction of the cells (pairs); bulk: of the indicators' sum
+  MarkingCriterion criterion = MarkingCriterion::count;
   double theta_h = 0.25, theta_coarsen = 0., kappa = 0.75;
 };
 

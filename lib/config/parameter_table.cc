@@ -318,6 +318,12 @@ std::vector<Entry> adaptivity_entries()
        "marked "
        "cell in direction i only where |eta_h,i^K| >= adaptivity.kappa * max_j "
        "|eta_h,j^K|."},
+      {"adaptivity", "marking_criterion", "count", m(&S::marking_criterion), by_name,
+       "How many cells (joint: pairs) theta_h selects. count: the theta_h fraction of "
+       "them, largest indicators first; bulk: the fewest largest ones whose indicators "
+       "sum to theta_h of the total (Doerfler; few cells where the error is "
+       "concentrated). Cells, pairs or directions as adaptivity.marking ranks them; "
+       "the coarsening and theta_tau stay by count."},
       {"adaptivity", "kappa", "0.75", m(&S::kappa), real(0.),
        "marking = cell: a marked cell is cut in direction i iff |eta_h,i^K| >= kappa * "
        "its largest directional indicator, in [0,1] (1: the dominant direction only; 0: "
@@ -326,8 +332,9 @@ std::vector<Entry> adaptivity_entries()
       {"adaptivity", "loops", "6", m(&S::loops), integer(1, 1000),
        "Maximum number of DWR loops."},
       {"adaptivity", "theta_h", "0.25", m(&S::theta_h), real(0.),
-       "Fraction of cells marked per direction (by count, largest indicators), in "
-       "[0,1].",
+       "Fraction of cells marked (adaptivity.marking says of which ranking; "
+       "adaptivity.marking_criterion whether of their count or of the indicators' "
+       "sum), in [0,1].",
        "a fraction in [0, 1]", Check::fraction},
       {"adaptivity", "theta_tau", "0.2", m(&S::theta_tau), real(0.),
        "Fraction of slabs bisected (largest |eta_tau^n|), in [0,1]; 0 keeps the time "

@@ -130,6 +130,7 @@ struct AdaptivitySection
 {
   AdaptivityMode mode = AdaptivityMode::anisotropic;
   Marking marking = Marking::cell;
+  MarkingCriterion marking_criterion = MarkingCriterion::count;
   double kappa = 0.75;
   unsigned int loops = 6;
   double theta_h = 0.25;

@@ -41,6 +41,7 @@ MarkingOptions marking_options(const Parameters &prm)
   marking.mode = prm.adaptivity.mode;
   marking.theta_h = prm.adaptivity.theta_h;
   marking.marking = prm.adaptivity.marking;
+  marking.criterion = prm.adaptivity.marking_criterion;
   marking.theta_coarsen = prm.adaptivity.theta_coarsen;
   marking.kappa = prm.adaptivity.kappa;
   return marking;
