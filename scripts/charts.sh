@@ -3,6 +3,7 @@
 #   scripts/stability_study.sh          -> results/stability/
 #   anisodwr run config/hemker_count.json --set adaptivity.loops=60 --set adaptivity.max_wall_time=1800
 #        --set adaptivity.max_memory_mb=23000 --set output.vtu_loops=2 --output results/hemker_30min_direct
+#   anisodwr run config/hemker.json --output results/hemker_bulk30
 #   anisodwr run config/convergence_{time_r0..r3,space_p1..p4}.json
 # Charts whose inputs are missing are skipped with a message. Hemker meshes are drawn
 # at loop 12 (2.7e5 cells; loop 14 has 1.2e6, slow to draw).
@@ -13,6 +14,7 @@ R=${1:-$ROOT/results}
 OUT=${2:-$ROOT/doc/img}
 S=$R/stability
 H=$R/hemker_30min_direct
+B=$R/hemker_bulk30
 mkdir -p "$OUT"
 chart() { /usr/bin/python3 "$ROOT/postprocess/charts.py" "$@" && echo "wrote $2" || echo "skipped $2 (missing input)"; }
 chart work-precision "$OUT/work_precision.png" "$S/moving_hump_reference=dG(0) aniso" \
@@ -23,6 +25,8 @@ chart goal-values "$OUT/hemker_goals.png" "$H=aniso 30 min" "$S/hemker_isotropic
 chart mesh "$OUT/hemker_mesh.png" "$H" 12 aspect_ratio
 chart mesh "$OUT/hemker_mesh_zoom.png" "$H" 12 u -1.6 0.2 -0.2 1.6
 chart mesh "$OUT/hemker_mesh_zoom_ar.png" "$H" 12 aspect_ratio -1.2 0.4 0.5 1.2
+chart mesh "$OUT/hemker_bulk_mesh.png" "$B" 30 aspect_ratio
+chart mesh "$OUT/hemker_bulk_mesh_zoom_ar.png" "$B" 30 aspect_ratio -1.2 0.4 0.5 1.2
 chart cutlines "$OUT/hemker_cutlines.png" "$H" 2,6,-1
 chart compare-cut "$OUT/hemker_galerkin_supg.png" normal -1 "$S/hemker_uniform_delta0=Galerkin" \
   "$S/hemker_uniform_delta0.1=SUPG 0.1" "$S/hemker_uniform_delta1=SUPG 1"
