@@ -84,6 +84,7 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
                                                 : prm.discretization.delta0;
   return make_space_with(prm, scene, tria, degree, delta0, 1.);
 }
+
 std::vector<std::string> dwr_warnings(const Parameters &prm)
 {
   std::vector<std::string> w;

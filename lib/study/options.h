@@ -41,13 +41,13 @@ MarkingOptions marking_options(const Parameters &prm);
 std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
                                      const dealii::Triangulation<2, 2> &tria,
                                      unsigned int degree, double tau_scale = 1.);
-/// Warnings on combinations of DWR keys that run but are known to mislead (each one
-/// line, naming the keys; empty if there are none). The loop prints them first.
-std::vector<std::string> dwr_warnings(const Parameters &prm);
-
 /// The adjoint's space: as make_space, with the delta0 of the adaptivity section
 /// (adjoint_stabilization, adjoint_delta0).
 std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<2> &scene,
                                              const dealii::Triangulation<2, 2> &tria,
                                              unsigned int degree);
+
+/// Warnings on combinations of DWR keys that run but are known to mislead (each one
+/// line, naming the keys; empty if there are none). The loop prints them first.
+std::vector<std::string> dwr_warnings(const Parameters &prm);
 } // namespace anisodwr
