@@ -20,6 +20,29 @@ expect 2 "'nan,0.5' in key 'goal.locations'" -- run "$cfg" --output "$(o)" "${pt
 expect 2 "'1e+06' for key 'goal.radius'" -- run "$cfg" --output "$(o)" --set goal.radius=1e6
 expect 0 "results:" -- run "$cfg" --output "$(o)" "${pt[@]}" --set goal.locations="0.3,0.3; 1,1"
 
+# goal.reference: the error columns against given values, marked in summary.json
+expect 2 "invalid value '2.6' for key 'goal.reference'; expected 2 comma-separated values" -- run "$hemker" --output "$(o)" --set goal.reference=2.6
+expect 2 "goal.reference'; the uncertainty of goal u_xe1_I must be >= 0" -- run "$hemker" --output "$(o)" --set goal.reference="2.6+--1, 1e-3"
+expect 2 "invalid value 'x' in key 'goal.reference'" -- run "$hemker" --output "$(o)" --set goal.reference="2.6+-x, 1e-3"
+expect 2 "goal.reference'; scene 'moving_hump' has an exact solution" -- run "$cfg" --output "$(o)" --set goal.reference="1, 1"
+ref=$(o)
+expect 0 "u_xe1_I = 2.605 +- 0.003 (reference)" -- run "$hemker" --output "$ref" --set adaptivity.loops=1 --set goal.weights=1,2 --set adaptivity.per_goal_estimates=true --set goal.reference="2.605+-0.003, 1.25e-3"
+if python3 - "$ref" <<'PY'; then echo "ok: goal.reference columns"; else echo "FAIL: goal.reference columns"; fail=1; fi
+import csv, json, math, sys
+d = json.load(open(sys.argv[1] + "/summary.json"))
+assert d["error_reference"] == "goal.reference" and d["reference_uncertainty"] == [0.003, 0.0]
+row = next(csv.DictReader(open(sys.argv[1] + "/loops.csv")))
+ref = {"u_xe1_I": 2.605, "u_xe2_I": 1.25e-3}
+J = {g: v["J_h"] for g, v in d["loops"][0]["goals"].items()}
+for g in ref:
+    err = ref[g] - J[g]
+    assert math.isclose(float(row["err_" + g]), err, rel_tol=1e-6), g
+    assert math.isclose(float(row["I_eff_" + g]), abs(float(row["eta_" + g]) / err), rel_tol=1e-6), g
+err_w = (ref["u_xe1_I"] - J["u_xe1_I"]) + 2 * (ref["u_xe2_I"] - J["u_xe2_I"])
+assert math.isclose(float(row["J_error"]), abs(err_w), rel_tol=1e-6)
+assert math.isclose(float(row["I_eff"]), abs(float(row["eta_tauh"]) / err_w), rel_tol=1e-6)
+PY
+
 # config files: top level, directories, unreadable files, nesting
 for top in null 42 '"hello"' '[1, 2]' ''; do
   printf '%s' "$top" >"$tmp/top.json"

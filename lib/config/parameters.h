@@ -124,6 +124,7 @@ struct GoalSection
   bool over_time = false;
   double radius = 0.01;
   std::string weights = "1";
+  std::string reference = ""; ///< "J_1[+-u_1], J_2[+-u_2], ..." or empty
 };
 
 struct AdaptivitySection

@@ -58,6 +58,37 @@ std::vector<double> numbers(const std::string &s, const std::string &key, unsign
                      " comma-separated numbers, got " + std::to_string(v.size()));
   return v;
 }
+/// goal.reference into the goals: one "value" or "value+-uncertainty" per goal.
+void set_references(const GoalInput &in, const Scene<2> &scene,
+                    std::vector<GoalSpec> &goals)
+{
+  if (in.reference.find_first_not_of(" \t") == std::string::npos)
+    return;
+  const std::string bad = in.reference_source + ": invalid value '" + in.reference +
+                          "' for key 'goal.reference'; ";
+  if (scene.exact() != nullptr)
+    throw InputError(bad + "scene '" + scene.name() +
+                     "' has an exact solution, from which the goals' errors are "
+                     "computed; reference values are for scenes without one");
+  const auto items = split(in.reference, ',');
+  if (items.size() != goals.size())
+    throw InputError(bad + "expected " + std::to_string(goals.size()) +
+                     " comma-separated values (one per goal, each optionally "
+                     "value+-uncertainty), got " +
+                     std::to_string(items.size()));
+  for (std::size_t g = 0; g < goals.size(); ++g)
+  {
+    const auto pm = items[g].find("+-");
+    const std::string value = items[g].substr(0, pm);
+    const std::string unc = pm == std::string::npos ? "0" : items[g].substr(pm + 2);
+    goals[g].reference = numbers(value, "goal.reference", 1, in.reference_source)[0];
+    goals[g].reference_uncertainty =
+        numbers(unc, "goal.reference", 1, in.reference_source)[0];
+    if (goals[g].reference_uncertainty < 0)
+      throw InputError(bad + "the uncertainty of goal " + goals[g].name +
+                       " must be >= 0");
+  }
+}
 } // namespace
 
 std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
@@ -128,6 +159,7 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
     for (std::size_t g = 0; g < goals.size(); ++g)
       goals[g].weight = v[w.size() == 1 ? 0 : g];
   }
+  set_references(in, scene, goals);
   return goals;
 }
 } // namespace anisodwr

@@ -33,6 +33,9 @@ struct GoalSpec
   double radius = 0;                ///< mollifier radius s
   std::vector<double> lower, upper; ///< mean goals: the rectangle
   double weight = 1;
+  /// goal.reference: the goal's reference value and its uncertainty (NaN: none given;
+  /// uncertainty 0 where the value was given without one)
+  double reference = std::nan(""), reference_uncertainty = std::nan("");
 };
 
 /// The goal with weight 1 (the per-goal values and estimates are unweighted).

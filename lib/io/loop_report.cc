@@ -155,7 +155,15 @@ std::string summary_json(const SummaryContext &context, const std::vector<LoopRo
   f << "  \"config\": " << context.config_json << ",\n  \"goals\": [";
   for (std::size_t g = 0; g < goals.size(); ++g)
     f << (g ? ", " : "") << "\"" << goals[g] << "\"";
-  f << "],\n  \"loops\": [";
+  f << "],\n  \"error_reference\": \"" << json_escape(context.error_reference) << "\"";
+  if (!context.reference_uncertainty.empty())
+  {
+    f << ",\n  \"reference_uncertainty\": [";
+    for (std::size_t g = 0; g < context.reference_uncertainty.size(); ++g)
+      f << (g ? ", " : "") << num(context.reference_uncertainty[g]);
+    f << "]";
+  }
+  f << ",\n  \"loops\": [";
   const auto names = loop_columns(goals);
   for (std::size_t i = 0; i < rows.size(); ++i)
   {

@@ -79,6 +79,10 @@ struct SummaryContext
   std::string config_json;
   std::vector<std::string> goal_names;
   std::string solver_json;
+  /// where J_exact and the error columns come from: "exact", "goal.reference" or
+  /// "none"; with "goal.reference" the uncertainty of each goal's reference value
+  std::string error_reference = "none";
+  std::vector<double> reference_uncertainty = {};
 };
 
 /// The text of summary.json.

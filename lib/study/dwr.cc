@@ -209,7 +209,11 @@ private:
   const Parameters &prm;
   const std::unique_ptr<Scene<2>> scene;
   std::vector<GoalSpec> goals;
-  const bool auto_weights, estimate_weights, has_exact;
+  const bool auto_weights, estimate_weights;
+  /// "exact" (the scene's exact solution), "goal.reference" or "none": where J_exact,
+  /// and with it the error columns and I_eff, come from
+  const std::string error_reference;
+  const bool has_exact; ///< error_reference != "none"
   std::vector<double> J_exact;
   MarkingOptions marking;
   Triangulation<2> tria;
@@ -231,6 +235,16 @@ private:
   double mem_ratio = 1.;
   Timer wall;
 };
+
+/// The uncertainties of goal.reference, one per goal (empty without references).
+std::vector<double> reference_uncertainties(const std::vector<GoalSpec> &goals)
+{
+  std::vector<double> u;
+  for (const auto &g : goals)
+    if (!std::isnan(g.reference))
+      u.push_back(g.reference_uncertainty);
+  return u;
+}
 
 std::vector<std::string> goal_names(const std::vector<GoalSpec> &goals)
 {
@@ -261,15 +275,18 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
     : prm(prm), scene(scene_in_directory(prm)),
       goals(make_goals(goal_input(prm), *scene)),
       auto_weights(prm.goal.weights == "auto"),
-      estimate_weights(prm.goal.weights == "estimate"), has_exact(scene->exact() != nullptr),
+      estimate_weights(prm.goal.weights == "estimate"),
+      error_reference(scene->exact()                      ? "exact"
+                      : std::isnan(goals.front().reference) ? "none"
+                                                            : "goal.reference"),
+      has_exact(error_reference != "none"),
       J_exact(goals.size(), nan), marking(marking_options(prm)),
       tria(tria_smoothing<2>(marking)), basis(prm.discretization.r),
       q(prm.adaptivity.adjoint_degree ? prm.adaptivity.adjoint_degree
                                       : 2 * prm.discretization.p)
 {
-  if (has_exact)
-    for (std::size_t g = 0; g < goals.size(); ++g)
-      J_exact[g] = exact_goal(*scene, goals[g]);
+  for (std::size_t g = 0; g < goals.size(); ++g)
+    J_exact[g] = scene->exact() ? exact_goal(*scene, goals[g]) : goals[g].reference;
   scene->make_coarse_grid(tria);
   tria.refine_global(prm.discretization.initial_refinements);
   mesh = TimeMesh::uniform(scene->end_time, prm.discretization.n_slabs);
@@ -292,7 +309,10 @@ void AdaptiveLoop::run()
             << ")-dG(" << prm.discretization.r << "), adjoint cG(" << q << "), "
             << name(prm.adaptivity.mode) << ", goals:";
   for (std::size_t g = 0; g < goals.size(); ++g)
-    std::cout << " " << goals[g].name << (has_exact ? " = " + num(J_exact[g]) : "");
+    std::cout << " " << goals[g].name << (has_exact ? " = " + num(J_exact[g]) : "")
+              << (std::isnan(goals[g].reference)
+                      ? ""
+                      : " +- " + num(goals[g].reference_uncertainty) + " (reference)");
   std::cout << "\n";
   print_loop_header(std::cout);
   try
@@ -679,8 +699,9 @@ void AdaptiveLoop::summary(const std::string &status, const std::string &reason,
                            double wall_time, const std::string &details)
 {
   write_summary(prm.output.directory + "/summary.json",
-                {prm.to_json(2), goal_names(goals), solver_totals_json()}, rows, status,
-                reason, wall_time, details);
+                {prm.to_json(2), goal_names(goals), solver_totals_json(), error_reference,
+                 reference_uncertainties(goals)},
+                rows, status, reason, wall_time, details);
 }
 } // namespace
 

@@ -24,9 +24,11 @@ GoalInput goal_input(const Parameters &prm)
   in.over_time = prm.goal.over_time;
   in.radius = prm.goal.radius;
   in.weights = prm.goal.weights;
+  in.reference = prm.goal.reference;
   in.locations_source = prm.source("goal.locations");
   in.radius_source = prm.source("goal.radius");
   in.weights_source = prm.source("goal.weights");
+  in.reference_source = prm.source("goal.reference");
   return in;
 }
 
