@@ -167,6 +167,13 @@ TEST(Probes, OverAndUndershootsOfBumpsAtVertices)
   EXPECT_NEAR(r.undershoot, 0.2, 1e-6);
   EXPECT_NEAR(r.undershoot_strip, 0.1, 1e-6);
   EXPECT_EQ(r.overshoot_strip, 0.);
+  // the box -1.5 < x < 4.5, 0 < y < 3 holds (0, 3) only on its boundary: the bump's
+  // largest value inside is at the vertex below it
+  EXPECT_GT(r.undershoot_box, 0.);
+  EXPECT_LT(r.undershoot_box, 0.1);
+  EXPECT_EQ(r.overshoot_box, 0.);
+  EXPECT_NEAR(r.undershoot_x, -3., 1e-12); // the vertex of the deepest bump
+  EXPECT_NEAR(r.undershoot_y, 0., 1e-12);
   EXPECT_EQ(r.u_min, 0.);
   EXPECT_EQ(r.u_max, 1.);
 }

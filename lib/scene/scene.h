@@ -94,6 +94,10 @@ template <int dim> struct ProbeSpec
   /// Over-/undershoots are also reported in the strip strip[0] < x_0 < strip[1].
   bool has_strip = false;
   std::array<double, 2> strip{{0., 0.}};
+  /// ... and in the box box[0] < x_0 < box[1], box[2] < x_1 < box[3] (the goals'
+  /// domain of influence; probes.csv overshoot_goals, undershoot_goals).
+  bool has_box = false;
+  std::array<double, 4> box{{0., 0., 0., 0.}};
 };
 
 template <int dim> class Scene

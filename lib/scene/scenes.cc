@@ -389,13 +389,18 @@ ProbeSpec<2> Hemker::probes() const
   const dealii::Point<2> x_gamma(-a, a), normal(-a, a);
   ProbeSpec<2> spec;
   spec.cut_lines = {{"x4", dealii::Point<2>(4., -3.), dealii::Point<2>(4., 3.)},
-                    {"normal", x_gamma, x_gamma + 2. * normal}};
+                    {"normal", x_gamma, x_gamma + 2. * normal},
+                    {"top", dealii::Point<2>(0., 1.), dealii::Point<2>(0., 1.5)}};
   spec.has_layer = true;
   spec.layer_ray = spec.cut_lines[1];
   spec.u_min = 0.;
   spec.u_max = 1.;
   spec.has_strip = true;
   spec.strip = {{-1.5, 1.5}};
+  // the goals' domain of influence: the upper half from just upstream of the circle to
+  // beyond x_e1 (the upper interior layer starts at the circle's top, (0, 1))
+  spec.has_box = true;
+  spec.box = {{-1.5, 4.5, 0., 3.}};
   return spec;
 }
 } // namespace anisodwr

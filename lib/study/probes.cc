@@ -183,17 +183,30 @@ ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &map
       const double over = std::max(uh[q] - r.u_max, 0.),
                    under = std::max(r.u_min - uh[q], 0.);
       r.overshoot = std::max(r.overshoot, over);
-      r.undershoot = std::max(r.undershoot, under);
-      const double x0 = fv.quadrature_point(q)[0];
-      if (spec.has_strip && x0 > spec.strip[0] && x0 < spec.strip[1])
+      const auto &x = fv.quadrature_point(q);
+      if (under > r.undershoot)
+      {
+        r.undershoot = under;
+        r.undershoot_x = x[0];
+        r.undershoot_y = x[1];
+      }
+      if (spec.has_strip && x[0] > spec.strip[0] && x[0] < spec.strip[1])
       {
         r.overshoot_strip = std::max(r.overshoot_strip, over);
         r.undershoot_strip = std::max(r.undershoot_strip, under);
+      }
+      if (spec.has_box && x[0] > spec.box[0] && x[0] < spec.box[1] &&
+          x[1] > spec.box[2] && x[1] < spec.box[3])
+      {
+        r.overshoot_box = std::max(r.overshoot_box, over);
+        r.undershoot_box = std::max(r.undershoot_box, under);
       }
     }
   }
   if (!spec.has_strip)
     r.overshoot_strip = r.undershoot_strip = nan;
+  if (!spec.has_box)
+    r.overshoot_box = r.undershoot_box = nan;
   if (spec.has_layer)
   {
     const LineEvaluator<dim> line(dofs, mapping, u, spec.layer_ray.start,

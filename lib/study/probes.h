@@ -60,6 +60,11 @@ struct ProbeResult
          s_lo = std::numeric_limits<double>::quiet_NaN();
   /// max(u_h - u_max, 0) and max(u_min - u_h, 0): whole domain and strip.
   double overshoot = 0, undershoot = 0, overshoot_strip = 0, undershoot_strip = 0;
+  /// ... in the box of ProbeSpec::box (NaN without one)
+  double overshoot_box = 0, undershoot_box = 0;
+  /// where the undershoot over the domain is largest (NaN if there is none)
+  double undershoot_x = std::numeric_limits<double>::quiet_NaN(),
+         undershoot_y = std::numeric_limits<double>::quiet_NaN();
   double u_min = 0, u_max = 0; ///< the bounds used
 
   /// The per-loop outputs by name, in the column order of probes.csv (the bounds are
@@ -72,7 +77,11 @@ struct ProbeResult
             {"overshoot", overshoot},
             {"undershoot", undershoot},
             {"overshoot_strip", overshoot_strip},
-            {"undershoot_strip", undershoot_strip}};
+            {"undershoot_strip", undershoot_strip},
+            {"overshoot_goals", overshoot_box},
+            {"undershoot_goals", undershoot_box},
+            {"undershoot_x", undershoot_x},
+            {"undershoot_y", undershoot_y}};
   }
 };
 
