@@ -213,6 +213,29 @@ double max_aspect_ratio(const Triangulation<dim> &tria, const Mapping<dim> &mapp
   return ar;
 }
 
+template <int dim> double max_hanging_gap(const Triangulation<dim> &tria)
+{
+  static_assert(dim == 2, "faces with one hanging vertex: 2D");
+  double worst = 0;
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+    {
+      const auto face = cell->face(f);
+      if (cell->at_boundary(f) || !face->has_children())
+        continue;
+      const Point<dim> a = face->vertex(0), b = face->vertex(1),
+                       v = face->child(0)->vertex(1);
+      const Tensor<1, dim> t = (b - a) / (b - a).norm();
+      const Tensor<1, dim> off = (v - a) - ((v - a) * t) * t;
+      double thin = 1e300;
+      for (unsigned int s = 0; s < face->n_children(); ++s)
+        thin = std::min(thin, cell->neighbor_child_on_subface(f, s)->minimum_vertex_distance());
+      worst = std::max(worst, off.norm() / thin);
+    }
+  return worst;
+}
+
+template double max_hanging_gap<2>(const Triangulation<2> &);
 template MarkingStats mark_cells<2>(Triangulation<2> &, const Indicators<2> &,
                                     const MarkingOptions &);
 template double max_aspect_ratio<2>(const Triangulation<2> &, const Mapping<2> &,

@@ -74,4 +74,12 @@ template <int dim>
 double max_aspect_ratio(const dealii::Triangulation<dim> &tria,
                         const dealii::Mapping<dim> &mapping,
                         std::vector<double> *per_cell = nullptr);
+
+/// The geometric mismatch at hanging nodes: for every face with a hanging vertex, the
+/// distance of that vertex (placed by the manifold) from the coarse cell's straight face
+/// (MappingQ1), divided by the smallest vertex distance of the fine cells on the face.
+/// The largest ratio over the mesh; values near 1 or above mean that the fine cells
+/// overlap the coarse one, or leave a gap, by their own thickness (curved boundaries
+/// with thin cells).
+template <int dim> double max_hanging_gap(const dealii::Triangulation<dim> &tria);
 } // namespace anisodwr

@@ -65,7 +65,7 @@ std::vector<double> LoopRow::all_values() const
             double(marking[1]), double(marking[2]), double(marking[3]),
             double(marking[4]), mem_estimate, eta_h_rho, eta_h_rhostar, eta_h_supg,
             no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest,
-            eta_parts_abs()});
+            eta_parts_abs(), hanging_gap});
   return v;
 }
 
@@ -93,7 +93,7 @@ double LoopRow::eta_parts_abs() const
 /// directions), the number of (cell, direction) pairs without a lift and the UMFPACK
 /// factor sizes of the primal and adjoint slab matrices (MB), whether the primal and
 /// the adjoint marched concurrently (1/0), the remainder of the directional split and
-/// LoopRow::eta_parts_abs().
+/// LoopRow::eta_parts_abs(), and the mesh's hanging-node mismatch (max_hanging_gap).
 std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names)
 {
   auto c = columns;
@@ -105,7 +105,8 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
            {"eta_tau_rho", "eta_tau_rhostar", "err_tau", "err_tau_order", "marked",
             "marked_x", "marked_y", "marked_xy", "closure", "memory_estimate_mb",
             "eta_h_rho", "eta_h_rhostar", "eta_h_supg", "no_lift", "lu_primal_mb",
-            "lu_adjoint_mb", "concurrent", "eta_h_split_rest", "eta_abs"});
+            "lu_adjoint_mb", "concurrent", "eta_h_split_rest", "eta_abs",
+            "hanging_gap"});
   return c;
 }
 

@@ -31,6 +31,8 @@ struct LoopRow
   /// S(u)(R_h z)) and the (cell, direction) pairs without a lift
   double eta_h_rho = 0, eta_h_rhostar = 0, eta_h_supg = 0, no_lift = 0;
   double eta_h_split_rest = 0; ///< Indicators::eta_h_split_rest
+  /// max_hanging_gap of the loop's mesh (adaptivity/refinement.h)
+  double hanging_gap = 0;
   /// adaptivity.measure_time_error: J_w(u_h) - J_w(u_tau h) on this spatial mesh,
   /// extrapolated from the time mesh bisected once and twice (NaN when not measured)
   double err_tau = nan, err_tau_order = nan;

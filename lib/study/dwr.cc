@@ -428,6 +428,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   copy_indicators(ind, row);
   std::vector<double> ar_cell;
   row.ar = max_aspect_ratio(tria, primal.mapping(), &ar_cell);
+  row.hanging_gap = max_hanging_gap(tria);
 
   Vector<double> uT;
   combine_blocks(U.back(), basis.right_trace(), uT);
