@@ -237,3 +237,24 @@ TEST(Closure, AnisotropicClosureNeedsFewerCellsOnAGradedMesh)
             << cells[1] << "; cells closed isotropically " << closure_xy[0] << " vs "
             << closure_xy[1] << "\n";
 }
+
+// max_hanging_gap: zero on a straight-sided mesh; on a shell whose cells follow the
+// circles, the hanging vertex on the arc r = 1.5 lies the sagitta 1.5 (1 - cos(pi/8))
+// off the coarse cell's straight face (45 degree cells), over the fine cells' smallest
+// vertex distance, their radial width 0.25.
+TEST(Closure, HangingGapIsTheSagittaOverTheFineCellThickness)
+{
+  Triangulation<2> flat;
+  GridGenerator::hyper_cube(flat);
+  flat.refine_global(1);
+  flat.begin_active()->set_refine_flag();
+  flat.execute_coarsening_and_refinement();
+  EXPECT_EQ(max_hanging_gap(flat), 0.);
+
+  Triangulation<2> shell;
+  GridGenerator::hyper_shell(shell, Point<2>(), 1., 2., 4);
+  shell.refine_global(1);
+  shell.begin_active()->set_refine_flag();
+  shell.execute_coarsening_and_refinement();
+  EXPECT_NEAR(max_hanging_gap(shell), 1.5 * (1. - std::cos(M_PI / 8.)) / 0.25, 1e-12);
+}
