@@ -5,7 +5,7 @@
 //    test/reference/moving_hump_paper.csv (regenerate: ANISODWR_WRITE_REFERENCE=1);
 //  - moving_hump (the default config), first 8 loops: the same, plus the goals' errors
 //    (test/reference/moving_hump.csv);
-//  - hemker, first 3 loops: N_space (196 at loop 1) and N_t exactly; J_1, J_2, eta
+//  - hemker (10 loops), hemker_count and hemker_paper (3 loops each): N_space (196 at loop 1) and N_t exactly; J_1, J_2, eta
 //  values,
 //    layer width, over-/undershoot to 1e-6 relative (test/reference/hemker.csv); the
 //    cut-line CSVs are written;
@@ -191,6 +191,13 @@ TEST(Regression, HemkerCountFirstThreeLoops)
 {
   // config/hemker_count.json (theta_h = 1/3 of the cells)
   check_hemker("hemker_count.json", "hemker_count", 3);
+}
+
+TEST(Regression, HemkerPaperFirstThreeLoops)
+{
+  // config/hemker_paper.json (the reference paper's setting: per-direction marking of
+  // 1/3, w = 1, delta0 = 0.1 with |K|^(1/2)); loop 1 is the identical 196-DoF mesh
+  check_hemker("hemker_paper.json", "hemker_paper", 3);
 }
 
 TEST(Anisotropy, BoundaryLayerRefinesAcrossTheLayerOnly)
