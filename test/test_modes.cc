@@ -277,6 +277,14 @@ TEST(ModesChoice, AutoPicksModesWhereTheyApply)
         << op.auto_choice();
     EXPECT_EQ(solves_by_modes(o, constant.space->n_dofs(), r + 1, 1, true, true), r >= 1);
   }
+  // the modes' predicted peak decides against the memory budget
+  const double n = constant.space->n_dofs();
+  SlabSolverOptions tight = o;
+  tight.auto_memory_mb = 0.99 * predicted_modes_mb(n, 1, 3);
+  EXPECT_FALSE(auto_picks_modes(tight, n, 3, 1, true));
+  tight.auto_memory_mb = 1.01 * predicted_modes_mb(n, 1, 3);
+  EXPECT_TRUE(auto_picks_modes(tight, n, 3, 1, true));
+  EXPECT_FALSE(auto_picks_modes(tight, n, 3, 1, false)); // a factorization per slab
   // MUMPS keeps the coupled solve
   SlabSolverOptions mumps = o;
   mumps.direct_solver = DirectEngine::mumps;
