@@ -5,8 +5,8 @@
 #include "config/parameters.h"
 #include "scene/scene.h"
 #include "slab/slab_operator.h"
-#include "study/options.h"
 #include "solver/mode_solver.h"
+#include "study/options.h"
 #include "time/kronecker.h"
 #include "time/temporal_basis.h"
 
@@ -41,7 +41,8 @@ double relative_difference(Vector<double> a, const Vector<double> &b)
 }
 
 /// T1 = D (derivative with jump), T2 = tau Mhat of dG(r).
-void dg_factors(unsigned int r, double tau, FullMatrix<double> &T1, FullMatrix<double> &T2)
+void dg_factors(unsigned int r, double tau, FullMatrix<double> &T1,
+                FullMatrix<double> &T2)
 {
   const TemporalBasis basis(r);
   T1 = basis.derivative_with_jump();
@@ -142,7 +143,11 @@ TEST(ModeDirectSolver, SolvesRandomKroneckerSums)
       {
         // T2^{-1} T1 with eigenvalues of positive real part, real and complex
         // (a skew-symmetric tridiagonal part gives complex pairs, odd m one real mode)
-        T1(i, j) = (i == j ? 3. : j == i + 1 ? 2. : i == j + 1 ? -2. : 0.) + 0.2 * val(gen);
+        T1(i, j) = (i == j       ? 3.
+                    : j == i + 1 ? 2.
+                    : i == j + 1 ? -2.
+                                 : 0.) +
+                   0.2 * val(gen);
         T2(i, j) = (i == j ? 2. : 0.) + 0.3 * val(gen);
       }
     KronSplit k{T1, T2, &S1, &S2};

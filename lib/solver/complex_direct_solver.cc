@@ -18,9 +18,9 @@ void check(const char *call, long status, std::size_t n)
   const std::string what = status == UMFPACK_WARNING_singular_matrix
                                ? ": the matrix is singular"
                                : " failed with status " + std::to_string(status);
-  throw std::runtime_error(std::string("UMFPACK: ") + call + what +
-                           "\nUMFPACK status " + std::to_string(status) +
-                           " for a complex mode matrix of " + std::to_string(n) + " rows");
+  throw std::runtime_error(std::string("UMFPACK: ") + call + what + "\nUMFPACK status " +
+                           std::to_string(status) + " for a complex mode matrix of " +
+                           std::to_string(n) + " rows");
 }
 
 double megabytes(const double *info, int entry)
@@ -31,12 +31,16 @@ double megabytes(const double *info, int entry)
 
 ComplexDirectSolver::ComplexDirectSolver(unsigned int refinement_steps)
 {
-  static_assert(sizeof(control) / sizeof(double) == UMFPACK_CONTROL, "UMFPACK control size");
+  static_assert(sizeof(control) / sizeof(double) == UMFPACK_CONTROL,
+                "UMFPACK control size");
   umfpack_zl_defaults(control);
   control[UMFPACK_IRSTEP] = refinement_steps;
 }
 
-ComplexDirectSolver::~ComplexDirectSolver() { clear(); }
+ComplexDirectSolver::~ComplexDirectSolver()
+{
+  clear();
+}
 
 void ComplexDirectSolver::clear()
 {
@@ -76,7 +80,8 @@ void ComplexDirectSolver::factorize(std::complex<double> z,
       row.emplace_back(long(e1->column()), z.real() * s1 + s2, z.imag() * s1);
     }
     std::sort(row.begin(), row.end(),
-              [](const auto &a, const auto &b) { return std::get<0>(a) < std::get<0>(b); });
+              [](const auto &a, const auto &b)
+              { return std::get<0>(a) < std::get<0>(b); });
     const long start = Ap[i];
     for (std::size_t k = 0; k < row.size(); ++k)
       std::tie(Ai[start + k], Ax[start + k], Az[start + k]) = row[k];
@@ -119,8 +124,10 @@ void ComplexDirectSolver::solve(dealii::Vector<double> &re, dealii::Vector<doubl
                                 std::to_string(n_rows) + " rows");
   const dealii::Vector<double> bx(re), bz(im);
   // UMFPACK holds C^T: C x = b is its array transpose (UMFPACK_Aat, no conjugation).
-  const long *ap = Ap.empty() ? nullptr : Ap.data(), *ai = Ai.empty() ? nullptr : Ai.data();
-  const double *ax = Ax.empty() ? nullptr : Ax.data(), *az = Az.empty() ? nullptr : Az.data();
+  const long *ap = Ap.empty() ? nullptr : Ap.data(),
+             *ai = Ai.empty() ? nullptr : Ai.data();
+  const double *ax = Ax.empty() ? nullptr : Ax.data(),
+               *az = Az.empty() ? nullptr : Az.data();
   check("umfpack_zl_solve",
         umfpack_zl_solve(transpose ? UMFPACK_A : UMFPACK_Aat, ap, ai, ax, az, re.begin(),
                          im.begin(), bx.begin(), bz.begin(), numeric, control, nullptr),

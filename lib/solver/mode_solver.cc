@@ -77,7 +77,8 @@ void ModeDirectSolver::solve_block(std::size_t b, std::vector<dealii::Vector<dou
     return;
   }
   // ((alpha + i beta) S1 + S2) (y1 + i zz) = r1 + i rho r2, y2 = sigma zz; transposed:
-  // the transposed complex matrix, r1 - i r2 / rho, y2 = -rho zz (solver/temporal_schur.h).
+  // the transposed complex matrix, r1 - i r2 / rho, y2 = -rho zz
+  // (solver/temporal_schur.h).
   dealii::Vector<double> &y1 = y[j], &y2 = y[j + 1];
   y2 *= transpose ? -1. / blk.rho : blk.rho;
   complex_lu[b]->solve(y1, y2, transpose);

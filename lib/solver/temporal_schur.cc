@@ -80,8 +80,8 @@ TemporalSchur::TemporalSchur(const dealii::FullMatrix<double> &T1,
 
 unsigned int TemporalSchur::n_real() const
 {
-  return static_cast<unsigned int>(
-      std::count_if(blocks.begin(), blocks.end(), [](const ModeBlock &b) { return b.size == 1; }));
+  return static_cast<unsigned int>(std::count_if(
+      blocks.begin(), blocks.end(), [](const ModeBlock &b) { return b.size == 1; }));
 }
 
 unsigned int TemporalSchur::n_complex_pairs() const
@@ -104,8 +104,9 @@ void gather_modes(const dealii::FullMatrix<double> &A, const double *x, std::siz
     }
 }
 
-void scatter_modes(const dealii::FullMatrix<double> &A, const std::vector<const double *> &y,
-                   std::size_t n, double *out, double alpha, double beta)
+void scatter_modes(const dealii::FullMatrix<double> &A,
+                   const std::vector<const double *> &y, std::size_t n, double *out,
+                   double alpha, double beta)
 {
   const unsigned int m = A.m();
   const SlabLayout slab{m};

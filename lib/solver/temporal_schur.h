@@ -27,7 +27,8 @@ namespace anisodwr
 ///   [[B, -beta S1], [beta S1, B]] [y1; zz] = [r1; rho r2],  B = alpha S1 + S2,
 /// i.e. ((alpha + i beta) S1 + S2)(y1 + i zz) = r1 + i rho r2, with sigma = -beta/b and
 /// rho = beta/c. For the transposed block, sigma and rho swap roles: y2 = -rho zz,
-/// right-hand side r1 - i r2 / rho, and the complex matrix is transposed (not conjugated).
+/// right-hand side r1 - i r2 / rho, and the complex matrix is transposed (not
+/// conjugated).
 struct ModeBlock
 {
   unsigned int first = 0, size = 1;
@@ -47,8 +48,8 @@ struct TemporalSchur
   std::vector<ModeBlock> blocks;
 
   TemporalSchur() = default;
-  TemporalSchur(const dealii::FullMatrix<double> &T1, const dealii::FullMatrix<double> &T2,
-                bool transpose = false);
+  TemporalSchur(const dealii::FullMatrix<double> &T1,
+                const dealii::FullMatrix<double> &T2, bool transpose = false);
 
   unsigned int n_real() const;
   unsigned int n_complex_pairs() const;
@@ -60,6 +61,7 @@ void gather_modes(const dealii::FullMatrix<double> &A, const double *x, std::siz
                   const std::vector<double *> &y);
 /// out[i*m + k] = beta out[i*m + k] + alpha sum_l A(k, l) y_l[i] (modes -> interleaved;
 /// beta = 0 overwrites out).
-void scatter_modes(const dealii::FullMatrix<double> &A, const std::vector<const double *> &y,
-                   std::size_t n, double *out, double alpha = 1., double beta = 0.);
+void scatter_modes(const dealii::FullMatrix<double> &A,
+                   const std::vector<const double *> &y, std::size_t n, double *out,
+                   double alpha = 1., double beta = 0.);
 } // namespace anisodwr
