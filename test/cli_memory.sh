@@ -35,7 +35,7 @@ assert d["status"] == "ok"'
 # a limit between the two estimates: loop 1 runs, loop 2 is not started
 limit=$(python3 -c "import csv; e=[float(r['memory_estimate_mb']) for r in csv.DictReader(open('$d/loops.csv'))]; assert e[1]-e[0] > 4, e; print(round((e[0]+e[1])/2))")
 d=$tmp/between
-expect 2 "^anisodwr: stopped: loop 2: memory estimate [0-9]* MB.* exceeds adaptivity.max_memory_mb = $limit MB; N_space [0-9]*, adjoint [0-9]* DoFs, 10 slabs of dG(1), UMFPACK; not started$" -- \
+expect 2 "^anisodwr: stopped: loop 2: memory estimate [0-9]* MB.* exceeds adaptivity.max_memory_mb = $limit MB; N_space [0-9]*, adjoint [0-9]* DoFs, 10 slabs of dG(1), UMFPACK per temporal mode; not started$" -- \
   run "$cfg" --output "$d" "${base[@]}" --set adaptivity.loops=3 --set adaptivity.max_memory_mb=$limit
 check "dwr: stopped before loop 2, loop 1 on disk" "$d" '
 assert d["status"] == "stopped", d["status"]
@@ -55,7 +55,7 @@ assert d["status"] == "stopped" and d["loops"] == [] and rows == [], (d["status"
 
 # single run and convergence study: before the run / the level
 d=$tmp/single
-expect 2 "stopped: run: memory estimate [0-9]* MB exceeds adaptivity.max_memory_mb = 1 MB; N_space 1089, 10 slabs of dG(1), UMFPACK; not started" -- \
+expect 2 "stopped: run: memory estimate [0-9]* MB exceeds adaptivity.max_memory_mb = 1 MB; N_space 1089, 10 slabs of dG(1), UMFPACK per temporal mode; not started" -- \
   run "$cfg" --output "$d" --set study.mode=single --set discretization.initial_refinements=5 \
   --set adaptivity.max_memory_mb=1 --set discretization.r=1
 check "single: stopped" "$d" 'assert d["status"] == "stopped" and d["levels"] == []'

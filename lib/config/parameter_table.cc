@@ -162,12 +162,21 @@ std::vector<Entry> solver_entries()
   { return at(&Parameters::solver, &SlabSolverOptions::iterative, member); };
   return {
       {"solver", "type", "auto", m(&S::type), by_name,
-       "Slab solver: direct (UMFPACK), iterative (Belos Krylov method solver.krylov "
-       "with solver.preconditioner, Trilinos), or auto: UMFPACK while its predicted "
-       "factorization peak fits solver.auto_memory_mb, iterative otherwise; with a "
-       "factorization per slab (coefficients that depend on time, or no reuse) also "
-       "iterative from N_space (r+1)^2 >= solver.auto_threshold. The choice and its "
-       "reason are printed when they change."},
+       "Slab solver: direct (UMFPACK, or solver.direct, on the coupled slab matrix), "
+       "modes (exact solves by the temporal modes of K = D (x) M + tau Mhat (x) A: the "
+       "real Schur form of the dG(r) matrices, one UMFPACK LU of an N_space matrix per "
+       "real mode and one complex LU per complex pair, reused while tau is unchanged; "
+       "same answers as direct up to round-off, factors about (r+1) instead of "
+       "(r+1)^2 times those of one N_space LU; UMFPACK on every MPI rank; coefficients "
+       "that depend on time are solved by direct instead, with a warning), iterative "
+       "(Belos Krylov method solver.krylov with solver.preconditioner, Trilinos), or "
+       "auto: modes for r >= 1 with coefficients constant in time, "
+       "solver.reuse_factorization and solver.direct = umfpack while their predicted "
+       "peak fits solver.auto_memory_mb; otherwise UMFPACK on the coupled matrix while "
+       "its predicted factorization peak fits solver.auto_memory_mb, iterative "
+       "otherwise; with a factorization per slab (coefficients that depend on time, or "
+       "no reuse) also iterative from N_space (r+1)^2 >= solver.auto_threshold. The "
+       "choice and its reason are printed when they change."},
       {"solver", "dof_numbering", "auto", m(&S::dof_numbering), by_name,
        "Spatial DoF order: native (deal.II's cell-wise order), downstream (sorted "
        "along the convection b at the domain's centre; ILU and Gauss-Seidel then sweep "

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <mutex>
 
@@ -20,6 +21,23 @@ using namespace dealii;
 namespace
 {
 SolverTotals totals;
+
+/// solver.type = modes on a scene whose coefficients depend on time: said once.
+void warn_modes_time_dependent()
+{
+  static std::once_flag once;
+  std::call_once(once,
+                 []()
+                 {
+                   on_output_rank(
+                       []()
+                       {
+                         std::cerr << "anisodwr: solver.type = modes needs coefficients "
+                                      "constant in time; the slab systems of this scene "
+                                      "are solved by the coupled direct solver\n";
+                       });
+                 });
+}
 } // namespace
 
 double physical_memory_mb()
@@ -110,6 +128,30 @@ bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m
   return !factorization_reused && n * m >= auto_size_threshold(opt, degree);
 }
 
+double predicted_modes_mb(double n_space, unsigned int degree, unsigned int m)
+{
+  // The modes' factors are each about the factor part of one N_space LU; the last
+  // factorization adds its work space. A complex pair's LU has twice the values of a
+  // real one and about the same integer part: counted as two real LUs.
+  return m * predicted_lu_mb(n_space, degree, 1);
+}
+
+bool auto_picks_modes(const SlabSolverOptions &opt, double n_space, unsigned int m,
+                      unsigned int degree, bool factorization_reused)
+{
+  return m >= 2 && factorization_reused && opt.direct_solver == DirectEngine::umfpack &&
+         predicted_modes_mb(n_space, degree, m) <= auto_memory_budget_mb(opt);
+}
+
+bool solves_by_modes(const SlabSolverOptions &options, double n_space, unsigned int m,
+                     unsigned int degree, bool coefficients_constant,
+                     bool factorization_reused)
+{
+  return (options.type == SolverType::modes && coefficients_constant) ||
+         (options.type == SolverType::automatic &&
+          auto_picks_modes(options, n_space, m, degree, factorization_reused));
+}
+
 bool releases_assembly_matrices(const SlabSolverOptions &options,
                                 bool coefficients_constant)
 {
@@ -121,7 +163,8 @@ bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsign
                         unsigned int degree, bool factorization_reused)
 {
   return options.type == SolverType::iterative ||
-         (options.type == SolverType::automatic &&
+         (options.type == SolverType::automatic && !options.direct_only &&
+          !auto_picks_modes(options, n_space, m, degree, factorization_reused) &&
           auto_picks_iterative(options, n_space * m, m, degree, factorization_reused));
 }
 
@@ -148,7 +191,7 @@ template <int dim>
 SlabOperator<dim>::SlabOperator(const Space<dim> &space, const TemporalBasis &basis,
                                 const SlabSolverOptions &options)
     : space(space), basis(basis), opt(options), reuse(options.reuse_factorization),
-      lu(options.refinement_steps, options.direct_solver)
+      lu(options.refinement_steps, options.direct_solver), modes_lu(options.refinement_steps)
 {
 }
 
@@ -193,13 +236,45 @@ void SlabOperator<dim>::factorize(bool release)
 }
 
 template <int dim>
+void SlabOperator<dim>::factorize_modes(bool release)
+{
+  Timer timer;
+  modes_lu.factorize(kron);
+  if (release)
+  {
+    // M_c stays for the Schur coupling; A_c is assembled again when tau changes
+    mats[0].Ac.clear();
+    terms_cond.clear();
+    kron.S2 = nullptr;
+  }
+  time.factorize += timer.wall_time();
+  time.factor_mb = std::max(time.factor_mb, modes_lu.factor_mb());
+  record_lu(space.n_dofs(), space.degree(), 1, modes_lu.real_peak_mb());
+  time.n_factorizations += static_cast<unsigned int>(modes_lu.schur().blocks.size());
+  lu_valid = true;
+}
+
+template <int dim>
 void SlabOperator<dim>::choose_solver(bool factorization_reused)
 {
   const unsigned int m = basis.n_dofs();
   const double n = double(space.n_dofs()) * m;
-  const double peak = predicted_lu_mb(n, space.degree(), m),
-               budget = auto_memory_budget_mb(opt);
-  use_iterative = auto_picks_iterative(opt, n, m, space.degree(), factorization_reused);
+  const double budget = auto_memory_budget_mb(opt);
+  use_modes = auto_picks_modes(opt, space.n_dofs(), m, space.degree(), factorization_reused);
+  if (use_modes)
+  {
+    use_iterative = false;
+    choice = "modes (dG(" + std::to_string(m - 1) +
+             "), coefficients constant in time: one UMFPACK LU per temporal mode, "
+             "predicted peak " +
+             std::to_string(long(std::ceil(
+                 std::min(predicted_modes_mb(space.n_dofs(), space.degree(), m), 1e15)))) +
+             " MB, budget " + std::to_string(long(budget)) + " MB)";
+    return;
+  }
+  const double peak = predicted_lu_mb(n, space.degree(), m);
+  use_iterative = !opt.direct_only &&
+                  auto_picks_iterative(opt, n, m, space.degree(), factorization_reused);
   const std::string engine = opt.direct_solver == DirectEngine::mumps ? "MUMPS" : "UMFPACK";
   const std::string memory = "predicted " + engine + " peak " +
                              std::to_string(long(std::ceil(std::min(peak, 1e15)))) +
@@ -224,7 +299,8 @@ void SlabOperator<dim>::assemble_terms(double t_start, double tau_n, bool consta
   if (constant)
   {
     // delta_K <= c tau_n: a new slab length needs new spatial matrices
-    if (mats.empty() || mats[0].Mc.empty() || (space.delta_depends_on_tau() && !same_tau))
+    if (mats.empty() || mats[0].Mc.empty() || mats[0].Ac.empty() ||
+        (space.delta_depends_on_tau() && !same_tau))
     {
       mats.resize(1);
       space.assemble_matrices(0., tau_n, mats[0]);
@@ -289,14 +365,21 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
   lu_valid = false;
   factorized = false; // until the new K is factorized (or the Krylov path is set up)
   lu.clear();
+  modes_lu.clear();
   // The kronecker preconditioners work matrix-free: K is assembled only if needed.
   K.clear();
   k_assembled = false;
   if (opt.type == SolverType::automatic)
     choose_solver(constant && reuse);
   else
+  {
     use_iterative = opt.type == SolverType::iterative;
-  if (!use_iterative || IterativeSlabSolver::needs_assembled_matrix(opt.iterative) ||
+    use_modes = opt.type == SolverType::modes && constant;
+    if (opt.type == SolverType::modes && !constant)
+      warn_modes_time_dependent();
+  }
+  if ((!use_iterative && !use_modes) ||
+      (use_iterative && IterativeSlabSolver::needs_assembled_matrix(opt.iterative)) ||
       !opt.dump_matrix.empty())
     assemble_matrix();
   if (!opt.dump_matrix.empty())
@@ -304,7 +387,14 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     write_matrix_market(K, opt.dump_matrix);
     opt.dump_matrix.clear(); // the first slab only
   }
-  if (!use_iterative)
+  if (use_modes)
+  {
+    K.clear(); // assembled only for output.dump_slab_loop
+    pattern.reinit(0, 0, 0);
+    k_assembled = false;
+    factorize_modes(releases_assembly_matrices(opt, constant));
+  }
+  else if (!use_iterative)
     // UMFPACK without iterative refinement reads neither K nor its copy of K in the
     // solves, and a reused factorization needs no condensed matrices until the slab
     // length changes: the march keeps only M (the jump) and A (the Dirichlet lift).
@@ -355,6 +445,8 @@ void SlabOperator<dim>::solve(const Vector<double> &load, Vector<double> &U, boo
   double setup_time = 0;
   if (use_iterative && !lu_valid)
     setup_time = solve_iterative(rhs, transpose);
+  else if (use_modes)
+    modes_lu.solve(rhs, transpose);
   else
     lu.solve(rhs, transpose);
   U = rhs;

@@ -11,6 +11,7 @@
 #include "slab/slab_solver_options.h"
 #include "solver/direct_solver.h"
 #include "solver/iterative_solver.h"
+#include "solver/mode_solver.h"
 #include "space/space.h"
 #include "time/kronecker.h"
 #include "time/temporal_basis.h"
@@ -83,6 +84,23 @@ double auto_size_threshold(const SlabSolverOptions &opt, unsigned int degree);
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused);
 
+/// Predicted peak (MB) of the mode solver for N_space = n_space and m temporal modes:
+/// the factors of m - 1 real N_space LUs (a complex pair counts as two) held while the
+/// last one factorizes, each as predicted_lu_mb(n_space, degree, 1).
+double predicted_modes_mb(double n_space, unsigned int degree, unsigned int m);
+
+/// Whether solver.type = auto picks the mode solver: m = r+1 >= 2, one factorization
+/// serves all slabs (coefficients constant in time, reuse_factorization), the direct
+/// solver is UMFPACK and predicted_modes_mb fits auto_memory_budget_mb.
+bool auto_picks_modes(const SlabSolverOptions &opt, double n_space, unsigned int m,
+                      unsigned int degree, bool factorization_reused);
+
+/// True if `options` solve by temporal modes (type modes with coefficients constant in
+/// time, or auto_picks_modes).
+bool solves_by_modes(const SlabSolverOptions &options, double n_space, unsigned int m,
+                     unsigned int degree, bool coefficients_constant,
+                     bool factorization_reused);
+
 /// True if the slab operator frees M_c, A_c and K before the numeric factorization: one
 /// UMFPACK factorization serves every slab (coefficients constant in t,
 /// reuse_factorization) and its solves read no matrix (refinement_steps = 0).
@@ -91,7 +109,7 @@ bool releases_assembly_matrices(const SlabSolverOptions &options,
 
 /// True if `options` solve the slab system of a space of FE_Q(degree) with n_space DoFs
 /// and a dG basis of m functions iteratively (type iterative, or auto_picks_iterative
-/// for n_space m unknowns).
+/// for n_space m unknowns, unless auto_picks_modes).
 bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
                         unsigned int degree, bool factorization_reused);
 
@@ -130,6 +148,10 @@ public:
   }
   /// True if the last prepare() chose the iterative path.
   bool iterative() const { return use_iterative; }
+  /// True if the last prepare() chose the mode solver.
+  bool modes() const { return use_modes; }
+  /// The mode solver (its Schur form and factor sizes; empty unless modes()).
+  const ModeDirectSolver &mode_solver() const { return modes_lu; }
   /// solver.type = auto: the last prepare()'s choice and its reason, e.g. "UMFPACK
   /// (predicted UMFPACK peak 812 MB, budget 12052 MB)"; empty for direct and iterative.
   const std::string &auto_choice() const { return choice; }
@@ -142,6 +164,7 @@ private:
   SlabSolverOptions opt;
   bool reuse;
   bool use_iterative = false;
+  bool use_modes = false;
 
   std::vector<SpatialMatrices> mats; // one per temporal quadrature point (+ jump), or one
   std::vector<KronTerm> terms_full, terms_cond;
@@ -149,6 +172,7 @@ private:
   dealii::SparsityPattern pattern;
   dealii::SparseMatrix<double> K;
   DirectSolver lu;
+  ModeDirectSolver modes_lu;
   std::string choice;
   bool factorized = false;
   KronSplit kron;
@@ -167,8 +191,12 @@ private:
   /// and its pattern once UMFPACK has copied it, before the numeric factorization: the
   /// factorization's peak then holds only M, A, UMFPACK's copy and its work space.
   void factorize(bool release = false);
-  /// solver.type = auto: sets use_iterative (auto_picks_iterative) and `choice`.
+  /// solver.type = auto: sets use_iterative (auto_picks_iterative), use_modes
+  /// (auto_picks_modes) and `choice`.
   void choose_solver(bool factorization_reused);
+  /// One LU per temporal mode of `kron`; with `release` frees A_c afterwards (M_c stays:
+  /// the Schur form's coupling multiplies by it).
+  void factorize_modes(bool release);
   /// Krylov solve in place (rhs -> solution); returns the time spent on setup.
   double solve_iterative(dealii::Vector<double> &rhs, bool transpose);
   double t0 = 0, tau = -1;

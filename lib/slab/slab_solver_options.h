@@ -9,19 +9,24 @@
 
 namespace anisodwr
 {
-/// direct: UMFPACK; iterative: Krylov (IterativeOptions); automatic ("auto"): see
+/// direct: UMFPACK (or MUMPS) on the coupled slab matrix; iterative: Krylov
+/// (IterativeOptions); modes: exact solves by the temporal modes of K = T1 (x) S1 +
+/// T2 (x) S2, one UMFPACK LU per mode (solver/mode_solver.h; coefficients constant in
+/// time, else the coupled direct solve); automatic ("auto"): see
 /// SlabSolverOptions::auto_memory_mb.
 enum class SolverType
 {
   direct,
   iterative,
-  automatic
+  automatic,
+  modes
 };
 inline const std::vector<Named<SolverType>> &names(SolverType)
 {
   static const std::vector<Named<SolverType>> table{{SolverType::direct, "direct"},
                                                     {SolverType::iterative, "iterative"},
-                                                    {SolverType::automatic, "auto"}};
+                                                    {SolverType::automatic, "auto"},
+                                                    {SolverType::modes, "modes"}};
   return table;
 }
 
@@ -47,13 +52,18 @@ struct SlabSolverOptions
   DirectEngine direct_solver = DirectEngine::umfpack;
   /// iterative refinement steps per direct solve
   unsigned int refinement_steps = 0;
-  /// auto: UMFPACK while its predicted factorization peak (predicted_lu_mb) is at most
+  /// auto: the mode solver for r >= 1 when one factorization serves all slabs
+  /// (coefficients constant in time, reuse_factorization) and the direct solver is
+  /// UMFPACK, while its predicted peak fits auto_memory_mb; else UMFPACK on the coupled
+  /// matrix while its predicted factorization peak (predicted_lu_mb) is at most
   /// auto_memory_mb (0: half the physical memory); with a factorization per slab
   /// (coefficients that depend on time, or no reuse) iterative from N_space (r+1)^2 >=
   /// auto_threshold (0: by the spatial degree, auto_size_threshold).
   double auto_threshold = 0.;
   double auto_memory_mb = 0.;
   Fallback fallback = Fallback::direct;
+  /// auto never picks the iterative path (set by the DWR loop for concurrent marches)
+  bool direct_only = false;
   IterativeOptions iterative;
   /// If not empty: the first slab matrix this operator prepares is written to this path
   /// in Matrix Market format (output.dump_slab_loop)

@@ -3,18 +3,11 @@
 #include "solver/amg_block.h"
 #include "solver/ifpack2_factory.h"
 #include "solver/inner_gmres.h"
-#include "time/slab_vector.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
-
-extern "C" void dgees_(const char *jobvs, const char *sort,
-                       int (*select)(double *, double *), const int *n, double *a,
-                       const int *lda, int *sdim, double *wr, double *wi, double *vs,
-                       const int *ldvs, double *work, const int *lwork, int *bwork,
-                       int *info);
 
 namespace anisodwr::tpetra
 {
@@ -24,7 +17,8 @@ KroneckerPreconditioner::KroneckerPreconditioner(const RCP<const Map> &slab_map,
     : presb(o.preconditioner == Preconditioner::kronecker_presb),
       inner_its(o.inner_iterations), inner_tol(o.inner_tolerance), slab_map(slab_map)
 {
-  schur_form(k, transpose);
+  schur = TemporalSchur(k.T1, k.T2, transpose);
+  m = schur.m;
 
   const auto &S1 = *k.S1;
   const auto &S2 = *k.S2;
@@ -33,11 +27,8 @@ KroneckerPreconditioner::KroneckerPreconditioner(const RCP<const Map> &slab_map,
   w1 = rcp(new Vec(space_map));
   w2 = rcp(new Vec(space_map));
   h = rcp(new Vec(space_map));
-  for (unsigned int j = 0; j < m;)
-  {
-    blocks.push_back(make_block(j, S1, S2, transpose, o));
-    j += blocks.back().size;
-  }
+  for (const ModeBlock &mode : schur.blocks)
+    blocks.push_back(make_block(mode, S1, S2, transpose, o));
   for (unsigned int k2 = 0; k2 < m; ++k2)
   {
     y.push_back(rcp(new Vec(space_map)));
@@ -45,66 +36,16 @@ KroneckerPreconditioner::KroneckerPreconditioner(const RCP<const Map> &slab_map,
   }
 }
 
-void KroneckerPreconditioner::schur_form(const KronSplit &k, bool transpose)
-{
-  m = k.T1.m();
-  const int mi = static_cast<int>(m);
-  dealii::FullMatrix<double> T1(m, m), T2(m, m), T2inv(m, m), G(m, m);
-  for (unsigned int i = 0; i < m; ++i)
-    for (unsigned int j = 0; j < m; ++j)
-    {
-      T1(i, j) = transpose ? k.T1(j, i) : k.T1(i, j);
-      T2(i, j) = transpose ? k.T2(j, i) : k.T2(i, j);
-    }
-  T2inv.invert(T2);
-  T2inv.mmult(G, T1);
-  // Real Schur form (LAPACK, column major).
-  std::vector<double> a(m * m), vs(m * m), wr(m), wi(m), work(8 * m + 16);
-  for (unsigned int i = 0; i < m; ++i)
-    for (unsigned int j = 0; j < m; ++j)
-      a[i + j * m] = G(i, j);
-  int sdim = 0, info = 0, lwork = static_cast<int>(work.size());
-  std::vector<int> bwork(m);
-  dgees_("V", "N", nullptr, &mi, a.data(), &mi, &sdim, wr.data(), wi.data(), vs.data(),
-         &mi, work.data(), &lwork, bwork.data(), &info);
-  if (info != 0)
-    throw std::runtime_error("kronecker preconditioner: dgees failed, info = " +
-                             std::to_string(info));
-  T.reinit(m, m);
-  Q.reinit(m, m);
-  for (unsigned int i = 0; i < m; ++i)
-    for (unsigned int j = 0; j < m; ++j)
-    {
-      T(i, j) = a[i + j * m];
-      Q(i, j) = vs[i + j * m];
-    }
-  P.reinit(m, m);
-  Q.Tmmult(P, T2inv); // P = Q^T T2^{-1}
-}
-
 KroneckerPreconditioner::Block
-KroneckerPreconditioner::make_block(unsigned int j,
+KroneckerPreconditioner::make_block(const ModeBlock &mode,
                                     const dealii::SparseMatrix<double> &S1,
                                     const dealii::SparseMatrix<double> &S2,
                                     bool transpose, const IterativeOptions &o) const
 {
   Block blk;
-  blk.first = j;
-  if (j + 1 < m && T(j + 1, j) != 0.)
-  {
-    blk.size = 2;
-    blk.alpha = 0.5 * (T(j, j) + T(j + 1, j + 1));
-    const double b = T(j, j + 1), c = T(j + 1, j);
-    blk.beta = std::sqrt(std::max(0., -b * c));
-    blk.sigma = -blk.beta / b;
-    blk.rho = blk.beta / c;
-    blk.shift = blk.alpha + blk.beta;
-  }
-  else
-  {
-    blk.size = 1;
-    blk.shift = T(j, j);
-  }
+  static_cast<ModeBlock &>(blk) = mode;
+  const unsigned int j = mode.first;
+  const auto &T = schur.T;
   if (blk.size == 2 && !presb)
   {
     dealii::FullMatrix<double> Tb(2, 2);
@@ -227,19 +168,15 @@ void KroneckerPreconditioner::apply(const MV &X, MV &Y, Teuchos::ETransp mode,
 void KroneckerPreconditioner::to_schur_basis(const MV &X, std::size_t column) const
 {
   const std::size_t n = space_map->getNodeNumElements();
-  const SlabLayout slab{m};
   auto x = X.getData(column);
   std::vector<Teuchos::ArrayRCP<double>> g(m);
+  std::vector<double *> modes(m);
   for (unsigned int k = 0; k < m; ++k)
+  {
     g[k] = y[k]->getDataNonConst();
-  for (std::size_t i = 0; i < n; ++i)
-    for (unsigned int k = 0; k < m; ++k)
-    {
-      double s = 0;
-      for (unsigned int l = 0; l < m; ++l)
-        s += P(k, l) * x[slab.index(i, l)];
-      g[k][i] = s;
-    }
+    modes[k] = g[k].getRawPtr();
+  }
+  gather_modes(schur.P, x.getRawPtr(), n, modes);
 }
 
 void KroneckerPreconditioner::back_substitute() const
@@ -250,8 +187,8 @@ void KroneckerPreconditioner::back_substitute() const
     const unsigned int j0 = b->first, j1 = b->first + b->size;
     for (unsigned int j = j0; j < j1; ++j)
       for (unsigned int l = j1; l < m; ++l)
-        if (T(j, l) != 0.)
-          y[j]->update(-T(j, l), *z[l], 1.);
+        if (schur.T(j, l) != 0.)
+          y[j]->update(-schur.T(j, l), *z[l], 1.);
     solve_block(*b);
     if (j0 > 0)
       for (unsigned int j = j0; j < j1; ++j)
@@ -329,19 +266,14 @@ void KroneckerPreconditioner::from_schur_basis(MV &Y, std::size_t column, double
                                                double beta) const
 {
   const std::size_t n = space_map->getNodeNumElements();
-  const SlabLayout slab{m};
   auto out = Y.getDataNonConst(column);
   std::vector<Teuchos::ArrayRCP<const double>> yy(m);
+  std::vector<const double *> modes(m);
   for (unsigned int k = 0; k < m; ++k)
+  {
     yy[k] = y[k]->getData();
-  for (std::size_t i = 0; i < n; ++i)
-    for (unsigned int k = 0; k < m; ++k)
-    {
-      double s = 0;
-      for (unsigned int l = 0; l < m; ++l)
-        s += Q(k, l) * yy[l][i];
-      out[slab.index(i, k)] =
-          (beta == 0. ? 0. : beta * out[slab.index(i, k)]) + alpha * s;
-    }
+    modes[k] = yy[k].getRawPtr();
+  }
+  scatter_modes(schur.Q, modes, n, out.getRawPtr(), alpha, beta);
 }
 } // namespace anisodwr::tpetra

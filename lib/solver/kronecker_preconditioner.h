@@ -2,6 +2,7 @@
 // The Kronecker (Schur-form) preconditioners kronecker and kronecker_presb of the slab
 // matrix K = T1 (x) S1 + T2 (x) S2 (internal to lib/solver/).
 #include "solver/iterative_solver.h"
+#include "solver/temporal_schur.h"
 #include "solver/tpetra_bridge.h"
 
 #include <functional>
@@ -60,10 +61,8 @@ private:
 
   /// One diagonal block of T: 1x1 (shift t) or 2x2 (alpha +- i beta), with its inner
   /// solver (ILU or AMG) and, for 2x2 blocks without PRESB, the 2n map and vectors.
-  struct Block
+  struct Block : ModeBlock
   {
-    unsigned int first = 0, size = 1;
-    double shift = 0, alpha = 0, beta = 0, sigma = 0, rho = 0;
     RCP<Matrix> matrix;
     Spatial spatial; // one ILU or AMG application
     /// 2x2 blocks without PRESB, and every 2x2 block with inner iterations: the 2n map
@@ -74,11 +73,8 @@ private:
     Presb presb;               // 2x2 blocks with PRESB
   };
 
-  /// m, T, Q and P = Q^T T2^{-1} from G = T2^{-1} T1 = Q T Q^T (of the transposed
-  /// factors if `transpose`).
-  void schur_form(const KronSplit &k, bool transpose);
-  /// The diagonal block of T starting at index j with its inner solver.
-  Block make_block(unsigned int j, const dealii::SparseMatrix<double> &S1,
+  /// The diagonal block `mode` of T with its inner solver.
+  Block make_block(const ModeBlock &mode, const dealii::SparseMatrix<double> &S1,
                    const dealii::SparseMatrix<double> &S2, bool transpose,
                    const IterativeOptions &o) const;
   /// blk.spatial: one application of an Ifpack2 ILU(k) or an ML V-cycle of blk.matrix.
@@ -107,7 +103,9 @@ private:
   mutable unsigned long inner_count = 0;
   unsigned int m = 1;
   RCP<const Map> slab_map, space_map;
-  dealii::FullMatrix<double> T, Q, P;
+  /// m, T, Q and P = Q^T T2^{-1} from G = T2^{-1} T1 = Q T Q^T (of the transposed
+  /// factors if transposed)
+  TemporalSchur schur;
   RCP<Matrix> S1_t;
   std::vector<Block> blocks;
   std::vector<RCP<Vec>> y, z;

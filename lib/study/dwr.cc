@@ -226,7 +226,7 @@ private:
   std::vector<std::pair<double, std::string>> vtu_records;
   std::string stop_reason = "max loops";
   /// solver.type = auto: the last choice printed per problem (primal, adjoint)
-  int iterative_before[2] = {-1, -1};
+  int iterative_before[2] = {-1, -1}; // 0 coupled direct, 1 iterative, 2 modes
   void report_auto_choice(unsigned int loop, unsigned int problem, const SlabOperator<2> &op);
   /// the memory estimate: the process before the loops' data, the limit, and the last
   /// loop's measured/estimated peak (>= 1) that scales the next estimate
@@ -442,7 +442,13 @@ SlabSolverOptions AdaptiveLoop::march_solver_options(unsigned int loop,
 {
   SlabSolverOptions o = slab_solver_options(prm);
   if (concurrent)
-    o.type = SolverType::direct;
+  {
+    // no Krylov solves in two threads: auto stays with a direct solver (modes or the
+    // coupled UMFPACK)
+    o.direct_only = true;
+    if (o.type == SolverType::iterative)
+      o.type = SolverType::direct;
+  }
   if (loop > 0 && loop == prm.output.dump_slab_loop)
   {
     std::ostringstream name;
@@ -555,9 +561,10 @@ void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
                                       const SlabOperator<2> &op)
 {
   // printed when the solver changes, so that the table stays readable
-  if (op.auto_choice().empty() || int(op.iterative()) == iterative_before[problem])
+  const int kind = op.iterative() ? 1 : op.modes() ? 2 : 0;
+  if (op.auto_choice().empty() || kind == iterative_before[problem])
     return;
-  iterative_before[problem] = int(op.iterative());
+  iterative_before[problem] = kind;
   std::cout << "  loop " << loop << (problem ? " adjoint" : " primal")
             << ", solver.type = auto: " << op.auto_choice() << "\n";
 }

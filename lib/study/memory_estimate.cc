@@ -36,6 +36,17 @@ void add_operator(const SlabSystemSize &s, const MemoryModel &m, Phase &p)
 {
   const double t = m.r + 1, nnz_k = t * t * s.nnz_space, n_k = t * s.n_space;
   const double sets = m.time_dependent ? m.r + 3 : 1;
+  if (s.modes)
+  {
+    // K is not assembled. Kept: M (jump), A (Dirichlet lift), M_c (the Schur form's
+    // coupling), and A_c unless released; the solver: UMFPACK's copy of one mode matrix
+    // (complex: twice the values), the factors of all modes and the last one's work
+    // space (predicted_modes_mb), and the 2(r+1) spatial vectors of a solve.
+    p.matrices += (m.lean_direct ? 3 : 4) * 8 * s.nnz_space;
+    p.solver += 24 * s.nnz_space + 16 * s.n_space + 8 * (2 * t + 2) * s.n_space +
+                predicted_modes_mb(s.n_space, s.degree, m.r + 1) * MB;
+    return;
+  }
   if (!s.iterative && m.lean_direct)
     p.matrices += 2 * 8 * s.nnz_space;
   else
@@ -121,9 +132,11 @@ SlabSystemSize slab_system(const Space<2> &space, const SlabSolverOptions &optio
   s.n_space = space.n_dofs();
   s.nnz_space = space.sparsity().n_nonzero_elements();
   s.degree = space.degree();
+  const bool constant = !space.scene.coefficients_depend_on_time();
   s.iterative = solves_iteratively(options, s.n_space, r + 1, space.degree(),
-                                   options.reuse_factorization &&
-                                       !space.scene.coefficients_depend_on_time());
+                                   options.reuse_factorization && constant);
+  s.modes = solves_by_modes(options, s.n_space, r + 1, space.degree(), constant,
+                            options.reuse_factorization && constant);
   return s;
 }
 
@@ -163,13 +176,14 @@ void check_memory(const std::string &what, double estimate_mb, const MemoryLimit
   if (!(estimate_mb > limit.mb))
     return;
   auto solver = [](const SlabSystemSize &s)
-  { return std::string(s.iterative ? "Krylov" : "UMFPACK"); };
+  { return std::string(s.iterative ? "Krylov" : s.modes ? "UMFPACK per temporal mode" : "UMFPACK"); };
   std::string sizes = "N_space " + std::to_string(std::size_t(model.primal.n_space));
   if (model.adjoint.n_space > 0)
     sizes += ", adjoint " + std::to_string(std::size_t(model.adjoint.n_space)) + " DoFs";
   sizes += ", " + std::to_string(model.n_slabs) + " slabs of dG(" +
            std::to_string(model.r) + "), " + solver(model.primal) +
-           (model.adjoint.n_space > 0 && model.adjoint.iterative != model.primal.iterative
+           (model.adjoint.n_space > 0 && (model.adjoint.iterative != model.primal.iterative ||
+                 model.adjoint.modes != model.primal.modes)
                 ? "/" + solver(model.adjoint)
                 : "");
   throw ResourceLimitError(what + ": memory estimate " +

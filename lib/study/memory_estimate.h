@@ -19,6 +19,7 @@ struct SlabSystemSize
   double n_space = 0;     ///< spatial DoFs (0: no such system)
   double nnz_space = 0;   ///< nonzeros of the spatial sparsity pattern
   bool iterative = false; ///< Krylov solver (else UMFPACK)
+  bool modes = false;     ///< UMFPACK per temporal mode (solver.type = modes or auto)
   unsigned int degree = 1; ///< FE_Q degree (UMFPACK's predicted peak depends on it)
 };
 
