@@ -83,7 +83,9 @@ TEST(TemporalSchur, FactorsTheDgMatrices)
           EXPECT_NEAR(QTQ(i, j), G(i, j), 1e-12 * G.frobenius_norm()) << "r = " << r;
           EXPECT_NEAR(QQ(i, j), i == j ? 1. : 0., 1e-13) << "r = " << r;
           if (i > j + 1)
+          {
             EXPECT_EQ(s.T(i, j), 0.);
+          }
         }
       unsigned int covered = 0;
       for (const auto &b : s.blocks)
@@ -101,9 +103,13 @@ TEST(TemporalSchur, FactorsTheDgMatrices)
       EXPECT_EQ(covered, m);
       EXPECT_EQ(s.n_real() + 2 * s.n_complex_pairs(), m);
       if (r >= 1)
+      {
         EXPECT_GE(s.n_complex_pairs(), 1u) << "r = " << r;
+      }
       if (r == 2)
+      {
         EXPECT_EQ(s.n_real(), 1u);
+      }
     }
 }
 
@@ -250,7 +256,9 @@ TEST_P(ModesVsCoupled, AgreesWithCoupledUmfpack)
   EXPECT_EQ(direct.timings().n_factorizations, 2u);
   EXPECT_GT(modes.timings().factor_mb, 0.);
   if (r >= 1)
+  {
     EXPECT_GE(modes.mode_solver().schur().n_complex_pairs(), 1u);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(DgZeroToThree, ModesVsCoupled,
