@@ -43,6 +43,17 @@ assert math.isclose(float(row["J_error"]), abs(err_w), rel_tol=1e-6)
 assert math.isclose(float(row["I_eff"]), abs(float(row["eta_tauh"]) / err_w), rel_tol=1e-6)
 PY
 
+# text values with quotes, backslashes and tabs are escaped in every JSON the program writes
+odd="$tmp/q\"b\\c	d"
+expect 0 "results:" -- run "$cfg" --output "$odd" --set adaptivity.loops=1
+if python3 -c "import json,sys; d=json.load(open(sys.argv[1] + '/summary.json')); assert d['config']['output']['directory'] == sys.argv[1]" "$odd" &&
+  "$bin" defaults | python3 -c "import json,sys; json.load(sys.stdin)"; then
+  echo "ok: summary.json and defaults parse with quotes, backslashes and tabs"
+else
+  echo "FAIL: summary.json or defaults do not parse"
+  fail=1
+fi
+
 # config files: top level, directories, unreadable files, nesting
 for top in null 42 '"hello"' '[1, 2]' ''; do
   printf '%s' "$top" >"$tmp/top.json"

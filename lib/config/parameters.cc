@@ -1,6 +1,7 @@
 #include "config/parameters.h"
 
 #include "base/errors.h"
+#include "base/json_escape.h"
 #include "config/parameter_table.h"
 
 #include <boost/property_tree/json_parser.hpp>
@@ -251,7 +252,7 @@ private:
 std::string json_value(const Entry &e, const std::string &value)
 {
   if (e.kind() == Kind::text)
-    return "\"" + value + "\"";
+    return "\"" + json_escape(value) + "\"";
   if (e.kind() == Kind::boolean)
     return (value == "true" || value == "True" || value == "yes") ? "true" : "false";
   return value;
@@ -276,9 +277,8 @@ std::string format(const std::map<std::string, std::string> &values, bool with_d
       out << ",";
     if (with_docs)
       out << "\n"
-          << pad << "    \"#" << e.key << "\": \"" << e.doc
-          << " Allowed: " << e.expected()
-          << "\",";
+          << pad << "    \"#" << e.key << "\": \""
+          << json_escape(e.doc + " Allowed: " + e.expected()) << "\",";
     out << "\n"
         << pad << "    \"" << e.key
         << "\": " << json_value(e, values.at(e.section + "." + e.key));

@@ -1,6 +1,8 @@
 #pragma once
 // A CSV table written row by row (each row flushed as soon as it is added, so a
 // run that stops early keeps every finished row).
+#include "base/json_escape.h"
+
 #include <fstream>
 #include <string>
 #include <vector>
@@ -30,8 +32,6 @@ double peak_memory_mb();
 /// Creates the directory (and parents); InputError naming it if that fails.
 void make_directory(const std::string &dir);
 
-/// s as the inside of a JSON string (quotes, backslashes, control characters escaped).
-std::string json_escape(const std::string &s);
 
 /// Writes `content` to path + ".tmp" and renames it to `path` (readers see the old or
 /// the new file, never a partial one); SIGINT/SIGTERM are held back meanwhile.
