@@ -8,6 +8,9 @@ Every chart reads only files a run writes, so any run can be charted:
 Usage:
   charts.py work-precision OUT.png RUN[=LABEL] ...   J error against cumulative wall time and N_tot
   charts.py goal-values OUT.png RUN[=LABEL] ...      J_i per loop against N_tot (scenes without exact J)
+  charts.py goal-errors OUT.png RUN[=LABEL] ...      per goal: J_i against N_space with the reference
+                                                     band (goal.reference or the exact value), and
+                                                     |eta_i| (own adjoint) against |J_i error|
   charts.py history OUT.png RUN                      |eta_h,x|, |eta_h,y|, |eta_tau|, |J error|, I_eff per loop
   charts.py convergence OUT.png CSV[=LABEL] ...      errors against h or tau from convergence.csv tables
   charts.py mesh OUT.png RUN LOOP [FIELD] [x0 x1 y0 y1]   (LOOP -1: the last)
@@ -97,6 +100,46 @@ def goal_values(out, runs):
             ax.semilogx([r["N_tot"] for r in rows], [r[key] for r in rows], "o-", ms=3,
                         label=f"{label}: {key[2:]}")
     finish(fig, ax, out, "$N_{tot}$", "$J_i(u_{\\tau h})$")
+
+
+def goal_errors(out, runs):
+    """Per goal one row of two panels: J_i(u_h) with the reference (and its uncertainty band
+    from summary.json), and |eta_i| (per_goal_estimates) beside |err_i| against N_space."""
+    import json
+    first = runs[0].split("=")[0]
+    goals = json.load(open(os.path.join(first, "summary.json")))["goals"]
+    fig, ax = plt.subplots(len(goals), 2, figsize=(11, 3.6 * len(goals)), squeeze=False)
+    for arg in runs:
+        path, label = split_label(arg)
+        summary = json.load(open(os.path.join(path, "summary.json")))
+        unc = summary.get("reference_uncertainty", [0.0] * len(goals))
+        loops = read(os.path.join(path, "loops.csv"))
+        probes = read(os.path.join(path, "probes.csv"))
+        n = [r["N_space"] for r in loops]
+        for g, name in enumerate(goals):
+            line = ax[g][0].semilogx(n, [p["J_" + name] for p in probes], "o-", ms=3,
+                                     label=label)[0]
+            ref = summary["loops"][0]["goals"][name]["J_exact"]
+            if ref is not None and ref == ref:
+                ax[g][0].axhline(ref, color=line.get_color(), lw=0.8, ls="--")
+                if unc and unc[g] > 0:
+                    ax[g][0].axhspan(ref - unc[g], ref + unc[g], color=line.get_color(),
+                                     alpha=0.15)
+            for key, style, lab in (("err_", "o-", "|error|"), ("eta_", "s--", "|eta|")):
+                xs, ys = positive(n, [abs(r.get(key + name, math.nan)) for r in loops])
+                if ys:
+                    ax[g][1].loglog(xs, ys, style, ms=3, color=line.get_color(),
+                                    label=f"{label}: {lab}")
+            ax[g][0].set_title(name, fontsize=9)
+            ax[g][1].set_title(name + ": own estimate against error", fontsize=9)
+    for g in range(len(goals)):
+        for a in ax[g]:
+            a.set_xlabel("$N_{space}$")
+            a.grid(True, which="both", alpha=0.3)
+            a.legend(fontsize=7)
+        ax[g][0].set_ylabel("$J_i(u_{\\tau h})$")
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
 
 
 def history(out, run):
@@ -251,6 +294,8 @@ def main(argv):
         work_precision(out, rest)
     elif cmd == "goal-values":
         goal_values(out, rest)
+    elif cmd == "goal-errors":
+        goal_errors(out, rest)
     elif cmd == "history":
         history(out, rest[0])
     elif cmd == "convergence":
