@@ -1,6 +1,6 @@
 #include "solver/complex_direct_solver.h"
 
-#include <umfpack.h>
+#include "solver/umfpack_status.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -13,20 +13,10 @@ namespace
 {
 void check(const char *call, long status, std::size_t n)
 {
-  if (status == UMFPACK_OK)
-    return;
-  const std::string what = status == UMFPACK_WARNING_singular_matrix
-                               ? ": the matrix is singular"
-                               : " failed with status " + std::to_string(status);
-  throw std::runtime_error(std::string("UMFPACK: ") + call + what + "\nUMFPACK status " +
-                           std::to_string(status) + " for a complex mode matrix of " +
-                           std::to_string(n) + " rows");
+  umfpack::check(call, status, "a complex mode matrix of " + std::to_string(n) + " rows");
 }
 
-double megabytes(const double *info, int entry)
-{
-  return info[entry] * info[UMFPACK_SIZE_OF_UNIT] / (1024. * 1024.);
-}
+using umfpack::megabytes;
 } // namespace
 
 ComplexDirectSolver::ComplexDirectSolver(unsigned int refinement_steps)

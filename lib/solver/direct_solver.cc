@@ -1,8 +1,7 @@
 #include "solver/direct_solver.h"
 
 #include "solver/mumps_solver.h"
-
-#include <umfpack.h>
+#include "solver/umfpack_status.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -15,20 +14,12 @@ namespace
 /// Throws with a first line for the console and the details below it (summary.json).
 void check(const char *call, long status, std::size_t n, std::size_t nnz)
 {
-  if (status == UMFPACK_OK)
-    return;
-  const std::string what = status == UMFPACK_WARNING_singular_matrix
-                               ? ": the matrix is singular"
-                               : " failed with status " + std::to_string(status);
-  throw std::runtime_error(std::string("UMFPACK: ") + call + what + "\nUMFPACK status " +
-                           std::to_string(status) + " for a matrix of " + std::to_string(n) +
-                           " rows and " + std::to_string(nnz) + " stored entries");
+  umfpack::check(call, status,
+                 "a matrix of " + std::to_string(n) + " rows and " + std::to_string(nnz) +
+                     " stored entries");
 }
 
-double megabytes(const double *info, int entry)
-{
-  return info[entry] * info[UMFPACK_SIZE_OF_UNIT] / (1024. * 1024.);
-}
+using umfpack::megabytes;
 } // namespace
 
 DirectSolver::DirectSolver(unsigned int refinement_steps, DirectEngine engine)
