@@ -14,6 +14,8 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparse_direct.h>
 
+#include "slab_problem.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -188,29 +190,6 @@ TEST(ModeDirectSolver, SolvesRandomKroneckerSums)
 
 namespace
 {
-struct SlabProblem
-{
-  std::unique_ptr<Scene<2>> scene;
-  Triangulation<2> tria;
-  std::unique_ptr<Space<2>> space;
-
-  SlabProblem(const std::string &name, const std::string &variant, unsigned int p,
-              double eps)
-  {
-    std::ostringstream e;
-    e << "scene.epsilon=" << eps;
-    scene = create_scene<2>(Parameters::from_overrides(
-        {"scene.name=" + name, "scene.variant=" + variant, e.str()}));
-    scene->make_coarse_grid(tria);
-    tria.refine_global(2);
-    // anisotropic refinement: hanging nodes in the constraints
-    tria.begin_active()->set_refine_flag(RefinementCase<2>::cut_x);
-    tria.execute_coarsening_and_refinement();
-    space = std::make_unique<Space<2>>(*scene, tria, p, 1.0);
-    space->setup();
-  }
-};
-
 SlabSolverOptions modes_options()
 {
   SlabSolverOptions o = SlabSolverOptions::direct(true);
