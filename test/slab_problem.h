@@ -1,14 +1,16 @@
 #pragma once
 // Test fixture shared by the slab-solver tests (test_iterative, test_modes): a scene's
 // coarse mesh refined globally, with one cell cut in x so that the constraints hold
-// hanging nodes, and its Q_p space.
+// hanging nodes, and its Q_p space; and reproducible random right-hand sides.
 #include "config/parameters.h"
 #include "scene/scene.h"
 #include "space/space.h"
 
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/vector.h>
 
 #include <memory>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -34,3 +36,14 @@ struct SlabProblem
     space->setup();
   }
 };
+
+/// n uniform random values in [-1, 1] from the seed.
+inline dealii::Vector<double> random_vector(std::size_t n, unsigned int seed)
+{
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> d(-1., 1.);
+  dealii::Vector<double> v(n);
+  for (auto &x : v)
+    x = d(gen);
+  return v;
+}

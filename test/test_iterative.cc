@@ -26,16 +26,6 @@ using namespace dealii;
 
 namespace
 {
-Vector<double> random_vector(std::size_t n, unsigned int seed)
-{
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> d(-1., 1.);
-  Vector<double> v(n);
-  for (auto &x : v)
-    x = d(gen);
-  return v;
-}
-
 SlabSolverOptions iterative(const std::string &krylov, const std::string &prec,
                             double tol)
 {

@@ -26,16 +26,6 @@ using namespace dealii;
 
 namespace
 {
-Vector<double> random_vector(std::size_t n, unsigned int seed)
-{
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> d(-1., 1.);
-  Vector<double> v(n);
-  for (auto &x : v)
-    x = d(gen);
-  return v;
-}
-
 double relative_difference(Vector<double> a, const Vector<double> &b)
 {
   a -= b;
