@@ -225,8 +225,8 @@ private:
   std::vector<LoopRow> rows;
   std::vector<std::pair<double, std::string>> vtu_records;
   std::string stop_reason = "max loops";
-  /// solver.type = auto: the last choice printed per problem (primal, adjoint)
-  int iterative_before[2] = {-1, -1}; // 0 coupled direct, 1 iterative, 2 modes
+  /// solver.type = auto: the last solver kind printed per problem (primal, adjoint)
+  int solver_kind_before[2] = {-1, -1}; ///< 0 coupled direct, 1 iterative, 2 modes
   void report_auto_choice(unsigned int loop, unsigned int problem, const SlabOperator<2> &op);
   /// the memory estimate: the process before the loops' data, the limit, and the last
   /// loop's measured/estimated peak (>= 1) that scales the next estimate
@@ -562,9 +562,9 @@ void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
 {
   // printed when the solver changes, so that the table stays readable
   const int kind = op.iterative() ? 1 : op.modes() ? 2 : 0;
-  if (op.auto_choice().empty() || kind == iterative_before[problem])
+  if (op.auto_choice().empty() || kind == solver_kind_before[problem])
     return;
-  iterative_before[problem] = kind;
+  solver_kind_before[problem] = kind;
   std::cout << "  loop " << loop << (problem ? " adjoint" : " primal")
             << ", solver.type = auto: " << op.auto_choice() << "\n";
 }
