@@ -4,8 +4,9 @@
 # fixed weights, moving_hump with goal.weights = estimate and the dG(r+1) primal), and
 # the concurrent column says which loops ran concurrently: all of them with the key true
 # (on a machine with more than one core), none with false, none with goal.weights = auto
-# (hemker: the adjoint's goal weights come from the primal); hemker's auto weights follow
-# the lift differences recorded in summary.json.
+# (hemker: the adjoint's goal weights come from the primal) unless each goal has its own
+# adjoint (per_goal_estimates); hemker's auto weights follow the lift differences
+# recorded in summary.json.
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
 
 column_values() { # loops.csv COLUMN: the column's distinct values
@@ -55,5 +56,32 @@ for loop in json.load(open(sys.argv[1]))["loops"]:
 if not (seen["unseen"] and seen["negative"]):
     sys.exit(f"FAIL: hemker loops 1-2 should have an unseen and a negative lift difference: {seen}")
 print("hemker, auto weights from the recorded lift differences: ok")
+PY
+
+# One adjoint per goal (per_goal_estimates): the adjoints do not depend on the auto
+# weights and march concurrently, concurrent and sequential marches agree, and the
+# combined indicators (the weighted sum of the goals' own) equal those of the one
+# adjoint of the weighted goal up to round-off
+for c in true false; do
+  "$bin" run "$src/config/hemker.json" --set adaptivity.loops=2 --set output.vtu_loops=0 \
+    --set adaptivity.per_goal_estimates=true --set adaptivity.concurrent_marches=$c \
+    --output "$tmp/hemker_goals_$c" >/dev/null 2>&1 || { echo "FAIL: hemker per goal $c"; fail=1; }
+done
+msg=$(same_loops "$tmp/hemker_goals_true/loops.csv" "$tmp/hemker_goals_false/loops.csv" 1e-12) || fail=1
+echo "hemker per goal, concurrent against sequential marches: $msg"
+on=$(column_values "$tmp/hemker_goals_true/loops.csv" concurrent)
+[ "$on" = "$want_on" ] || { echo "FAIL: hemker per goal: concurrent column '$on', want $want_on"; fail=1; }
+/usr/bin/python3 - "$tmp/hemker/loops.csv" "$tmp/hemker_goals_true/loops.csv" <<'PY' || fail=1
+import csv, sys
+a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+assert len(a) == len(b) == 2, (len(a), len(b))
+for x, y in zip(a, b):
+    for k in ("N_space", "J", "eta_hx", "eta_hy", "eta_tau", "eta_h_rho", "eta_h_supg"):
+        u, v = float(x[k]), float(y[k])
+        if abs(u - v) > 1e-9 * abs(u) + 1e-13:
+            sys.exit(f"FAIL: hemker loop {x['loop']} {k}: one adjoint {u}, sum over goals {v}")
+    if not y["eta_u_xe1_I"] or x["eta_u_xe1_I"]:
+        sys.exit("FAIL: eta_<goal> should be filled with per_goal_estimates only")
+print("hemker, the weighted sum of the goals' estimates against one adjoint: ok")
 PY
 exit $fail

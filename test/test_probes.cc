@@ -174,6 +174,10 @@ TEST(Probes, OverAndUndershootsOfBumpsAtVertices)
   EXPECT_EQ(r.overshoot_box, 0.);
   EXPECT_NEAR(r.undershoot_x, -3., 1e-12); // the vertex of the deepest bump
   EXPECT_NEAR(r.undershoot_y, 0., 1e-12);
+  // the box's deepest point is the vertex below (0, 3) on the line x = 0
+  EXPECT_NEAR(r.undershoot_goals_x, 0., 1e-12);
+  EXPECT_GT(r.undershoot_goals_y, 2.);
+  EXPECT_LT(r.undershoot_goals_y, 3.);
   EXPECT_EQ(r.u_min, 0.);
   EXPECT_EQ(r.u_max, 1.);
 }

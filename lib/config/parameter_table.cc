@@ -392,12 +392,15 @@ std::vector<Entry> adaptivity_entries()
        "error "
        "at T."},
       {"adaptivity", "per_goal_estimates", "false", m(&S::per_goal_estimates), boolean,
-       "Also solve one adjoint per goal and report each goal's own eta_tau h and I_eff "
-       "(loops.csv: eta_<goal>, I_eff_<goal>), so that cancellation between goals in the "
-       "combined estimate is visible; costs one adjoint solve and estimate per goal."},
+       "Solve one adjoint per goal (one factorization serves them all) and report each "
+       "goal's own eta_tau h and I_eff (loops.csv: eta_<goal>, I_eff_<goal>), so that "
+       "cancellation between goals in the combined estimate is visible. The combined "
+       "indicators are then the weighted sum of the goals' own; costs one adjoint solve "
+       "and estimate per goal instead of one in all."},
       {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
        "March the adjoint(s) in a second thread while the primal marches, when the "
-       "adjoint does not depend on the primal (goal.weights is not auto), one MPI rank "
+       "adjoint does not depend on the primal (goal.weights is not auto, or one adjoint "
+       "per goal: per_goal_estimates), one MPI rank "
        "and more than one thread run, both slab systems are predicted to go to UMFPACK, "
        "and the loop's memory estimate with both factorizations held at once fits the "
        "memory limit; otherwise (and with false) the primal, then the adjoint. The "

@@ -131,9 +131,9 @@ void add_goal_estimate(LoopRow &row, const Indicators<2> &goal_ind)
   row.eta_goal_parts.push_back({{goal_ind.eta_h[0], goal_ind.eta_h[1], goal_ind.eta_tau}});
 }
 
-/// The adjoint march of a loop: its slab operator (kept for per-goal estimates), the
-/// adjoint slab solutions (one set per goal with goal.weights = estimate, else one for
-/// the weighted goal) and its wall time.
+/// The adjoint march of a loop: its slab operator, the adjoint slab solutions (one set
+/// per goal with goal.weights = estimate or per_goal_estimates, else one for the
+/// weighted goal) and its wall time.
 struct AdjointMarch
 {
   std::unique_ptr<SlabOperator<2>> op;
@@ -174,11 +174,12 @@ private:
   /// The weights of the goals into row, and the weighted J and J_exact.
   void weigh_goals(LoopRow &row) const;
   /// The indicators ind of the weighted goal from the adjoint march: one adjoint for
-  /// J_w = sum_i w_i J_i, or (goal.weights = estimate) one per goal, w_i = sign(eta_i) /
-  /// max(|J_i(u_h)|, 1e-12) and ind = sum_i w_i ind_i. Sets t_adjoint, t_estimate.
+  /// J_w = sum_i w_i J_i, or (by_goal) one per goal and ind = sum_i w_i ind_i, with
+  /// goal.weights = estimate w_i = sign(eta_i) / max(|J_i(u_h)|, 1e-12). Sets t_adjoint,
+  /// t_estimate.
   void estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
                      const Space<2> &adjoint, const std::vector<Vector<double>> &U,
-                     const HigherOrderPrimal *hi, const MarchOptions &opt, AdjointMarch adj);
+                     const HigherOrderPrimal *hi, AdjointMarch adj);
   /// The adjoint of one goal alone (weight 1), marched with opq.
   std::vector<Vector<double>> goal_adjoint(const Space<2> &adjoint, SlabOperator<2> &opq,
                                            const GoalSpec &goal,
@@ -188,17 +189,13 @@ private:
                               const std::vector<Vector<double>> &U,
                               const std::vector<Vector<double>> &Z, const GoalSpec &goal,
                               const HigherOrderPrimal *hi) const;
-  /// goal.weights = estimate: see estimate_from.
+  /// by_goal: see estimate_from.
   void estimate_by_goal(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
                         const Space<2> &adjoint, std::vector<std::vector<Vector<double>>> Z,
                         const std::vector<Vector<double>> &U, const HigherOrderPrimal *hi);
   /// Probes and cut lines of u(T), and the VTU of the loop.
   void write_loop_outputs(LoopRow &row, const Space<2> &primal, const Vector<double> &uT,
                           const Indicators<2> &ind, const std::vector<double> &ar_cell);
-  /// eta of each goal alone (adaptivity.per_goal_estimates): its own adjoint and estimate.
-  void estimate_per_goal(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint,
-                         SlabOperator<2> &opq, const std::vector<Vector<double>> &U,
-                         const HigherOrderPrimal *hi, const MarchOptions &opt);
   /// True if the run ends after this loop (stop_reason says why).
   bool stop_after(const LoopRow &row);
   /// Tables, summary and console line of a finished loop.
@@ -210,6 +207,9 @@ private:
   const std::unique_ptr<Scene<2>> scene;
   std::vector<GoalSpec> goals;
   const bool auto_weights, estimate_weights;
+  /// one adjoint and one estimate per goal, the combined indicators their weighted sum
+  /// (goal.weights = estimate or adaptivity.per_goal_estimates)
+  const bool by_goal;
   /// "exact" (the scene's exact solution), "goal.reference" or "none": where J_exact,
   /// and with it the error columns and I_eff, come from
   const std::string error_reference;
@@ -276,6 +276,7 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
       goals(make_goals(goal_input(prm), *scene)),
       auto_weights(prm.goal.weights == "auto"),
       estimate_weights(prm.goal.weights == "estimate"),
+      by_goal(estimate_weights || prm.adaptivity.per_goal_estimates),
       error_reference(scene->exact()                      ? "exact"
                       : std::isnan(goals.front().reference) ? "none"
                                                             : "goal.reference"),
@@ -416,7 +417,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   evaluate_goals(row, primal, U);
   if (!concurrent)
     adj = march_adjoints(row.loop, adjoint, goals, opt, false);
-  estimate_from(row, ind, primal, adjoint, U, hi_ptr, opt, std::move(adj));
+  estimate_from(row, ind, primal, adjoint, U, hi_ptr, std::move(adj));
   for (double e : ind.eta_tau_slab)
     if (!std::isfinite(e))
       throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
@@ -463,13 +464,13 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
                                           const std::vector<GoalSpec> &goal_specs,
                                           const MarchOptions &opt, bool concurrent) const
 {
-  // goal.weights = estimate: all adjoints first (one factorization serves them), then
-  // the estimates without the adjoint's factors in memory
+  // One adjoint per goal: all adjoints first (one factorization serves them), then the
+  // estimates without the adjoint's factors in memory
   Timer t;
   AdjointMarch a;
   a.op = std::make_unique<SlabOperator<2>>(adjoint, basis,
                                            march_solver_options(loop, "adjoint", concurrent));
-  if (estimate_weights)
+  if (by_goal)
     for (const auto &goal : goal_specs)
       a.Z.push_back(goal_adjoint(adjoint, *a.op, goal, opt));
   else
@@ -482,17 +483,15 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
 void AdaptiveLoop::estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
                                  const Space<2> &adjoint,
                                  const std::vector<Vector<double>> &U,
-                                 const HigherOrderPrimal *hi, const MarchOptions &opt,
-                                 AdjointMarch adj)
+                                 const HigherOrderPrimal *hi, AdjointMarch adj)
 {
   row.t_adjoint = adj.wall;
   report_auto_choice(row.loop, 1, *adj.op);
   row.lu_adjoint_mb = adj.op->timings().factor_mb;
   // The estimator solves no slab system: the adjoint's factors and matrices go before
-  // it runs, unless the per-goal adjoints still need them.
-  if (estimate_weights || !prm.adaptivity.per_goal_estimates)
-    adj.op.reset();
-  if (estimate_weights)
+  // it runs.
+  adj.op.reset();
+  if (by_goal)
   {
     estimate_by_goal(row, ind, primal, adjoint, std::move(adj.Z), U, hi);
     return;
@@ -501,8 +500,6 @@ void AdaptiveLoop::estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2
   ind = estimate(primal, adjoint, mesh, basis, U, adj.Z[0], goals,
                  prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator);
   row.t_estimate = t.wall_time();
-  if (prm.adaptivity.per_goal_estimates)
-    estimate_per_goal(row, primal, adjoint, *adj.op, U, hi, opt);
 }
 
 void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
@@ -518,24 +515,13 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
     const auto part = goal_estimate(primal, adjoint, U, Z[i], goals[i], hi);
     Z[i] = {};
     add_goal_estimate(row, part);
-    goals[i].weight = signed_goal_weight(row.eta_goal[i], row.J_goal[i]);
+    if (estimate_weights)
+      goals[i].weight = signed_goal_weight(row.eta_goal[i], row.J_goal[i]);
     add_scaled(ind, goals[i].weight, part);
   }
-  weigh_goals(row);
+  if (estimate_weights)
+    weigh_goals(row);
   row.t_estimate = t.wall_time();
-}
-
-void AdaptiveLoop::estimate_per_goal(LoopRow &row, const Space<2> &primal,
-                                     const Space<2> &adjoint, SlabOperator<2> &opq,
-                                     const std::vector<Vector<double>> &U,
-                                     const HigherOrderPrimal *hi, const MarchOptions &opt)
-{
-  for (const auto &goal : goals)
-  {
-    const auto ig =
-        goal_estimate(primal, adjoint, U, goal_adjoint(adjoint, opq, goal, opt), goal, hi);
-    add_goal_estimate(row, ig);
-  }
 }
 
 std::vector<Vector<double>> AdaptiveLoop::goal_adjoint(const Space<2> &adjoint,
@@ -577,7 +563,8 @@ bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
   const SlabSolverOptions options = slab_solver_options(prm);
   const bool higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
   model.concurrent =
-      prm.adaptivity.concurrent_marches && !auto_weights && mpi_ranks() == 1 &&
+      prm.adaptivity.concurrent_marches && !(auto_weights && !by_goal) &&
+      mpi_ranks() == 1 &&
       MultithreadInfo::n_threads() > 1 && options.direct_solver == DirectEngine::umfpack &&
       !model.primal.iterative && !model.adjoint.iterative &&
       !(higher_order && solves_iteratively(options, primal.n_dofs(), prm.discretization.r + 2,

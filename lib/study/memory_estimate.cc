@@ -157,10 +157,12 @@ MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
   m.krylov_vectors = prm.solver.iterative.restart + 2;
   if (adjoint)
   {
-    // goal.weights = estimate marches every goal's adjoint before estimating
-    m.adjoints_stored = prm.goal.weights == "estimate"       ? std::max(1u, n_goals)
-                        : prm.adaptivity.per_goal_estimates ? 2
-                                                            : 1;
+    // one adjoint per goal (goal.weights = estimate, per_goal_estimates): every goal's
+    // adjoint is marched before the estimates
+    m.adjoints_stored =
+        prm.goal.weights == "estimate" || prm.adaptivity.per_goal_estimates
+            ? std::max(1u, n_goals)
+            : 1;
     m.extra_primal_slabs = prm.adaptivity.measure_time_error ? 4 * n_slabs : 0;
     // time_indicator = higher_order keeps the dG(r+1) primal: (r+2)/(r+1) primal slabs each
     if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)

@@ -199,7 +199,12 @@ ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &map
           x[1] > spec.box[2] && x[1] < spec.box[3])
       {
         r.overshoot_box = std::max(r.overshoot_box, over);
-        r.undershoot_box = std::max(r.undershoot_box, under);
+        if (under > r.undershoot_box)
+        {
+          r.undershoot_box = under;
+          r.undershoot_goals_x = x[0];
+          r.undershoot_goals_y = x[1];
+        }
       }
     }
   }

@@ -65,6 +65,9 @@ struct ProbeResult
   /// where the undershoot over the domain is largest (NaN if there is none)
   double undershoot_x = std::numeric_limits<double>::quiet_NaN(),
          undershoot_y = std::numeric_limits<double>::quiet_NaN();
+  /// where the undershoot in the box is largest (NaN if there is none)
+  double undershoot_goals_x = std::numeric_limits<double>::quiet_NaN(),
+         undershoot_goals_y = std::numeric_limits<double>::quiet_NaN();
   double u_min = 0, u_max = 0; ///< the bounds used
 
   /// The per-loop outputs by name, in the column order of probes.csv (the bounds are
@@ -81,7 +84,9 @@ struct ProbeResult
             {"overshoot_goals", overshoot_box},
             {"undershoot_goals", undershoot_box},
             {"undershoot_x", undershoot_x},
-            {"undershoot_y", undershoot_y}};
+            {"undershoot_y", undershoot_y},
+            {"undershoot_goals_x", undershoot_goals_x},
+            {"undershoot_goals_y", undershoot_goals_y}};
   }
 };
 
