@@ -154,10 +154,10 @@ template <int dim> struct LocalGoal<dim>::Part
   /// because the support is cut by cell edges here, where the composite rule loses the
   /// bump's smooth end). Returns false if a sample point cannot be mapped back (then
   /// `rule` is left untouched); true otherwise, with `empty` set if that box is empty
-  /// (the support misses the cell) and `rule` set if not.
+  /// (the support misses the cell) and `rule` (the 1D rules per direction) set if not.
   bool clipped_rule(const typename Triangulation<dim>::active_cell_iterator &cell,
                     const Mapping<dim> &mapping, const FiniteElement<dim> &fe,
-                    std::unique_ptr<FEValues<dim>> &rule, bool &empty) const
+                    std::array<Quadrature<1>, dim> &rule, bool &empty) const
   {
     static_assert(dim == 2, "LocalGoal: clipped rule for dim = 2");
     empty = false;
@@ -205,9 +205,7 @@ template <int dim> struct LocalGoal<dim>::Part
       }
       q[d] = Quadrature<1>(points, weights);
     }
-    rule = std::make_unique<FEValues<dim>>(
-        mapping, fe, tensor_rule(q[0], q[1]),
-        update_values | update_quadrature_points | update_JxW_values);
+    rule = q;
     return true;
   }
 
@@ -302,23 +300,44 @@ bool LocalGoal<dim>::cell_vector(
     }
     if (!part->meets(cell))
       continue;
+    const auto add = [&](FEValues<dim> &fv)
+    {
+      fv.reinit(cell);
+      for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
+      {
+        const double w =
+            part->goal.weight * part->density(fv.quadrature_point(q)) * fv.JxW(q);
+        if (w != 0.)
+        {
+          nonzero = true;
+          for (unsigned int l = 0; l < j.size(); ++l)
+            j(l) += w * fv.shape_value(l, q);
+        }
+      }
+    };
     bool capped = false, empty = false;
     const auto n = part->sub_cells(cell, &capped);
-    std::unique_ptr<FEValues<dim>> clipped;
-    if (capped && part->clipped_rule(cell, mapping, fe, clipped, empty) && empty)
-      continue;
-    FEValues<dim> &fv = clipped ? *clipped : part->fe_values(n, mapping, fe);
-    fv.reinit(cell);
-    for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
+    std::array<Quadrature<1>, dim> clipped;
+    if (!(capped && part->clipped_rule(cell, mapping, fe, clipped, empty)))
     {
-      const double w =
-          part->goal.weight * part->density(fv.quadrature_point(q)) * fv.JxW(q);
-      if (w != 0.)
-      {
-        nonzero = true;
-        for (unsigned int l = 0; l < j.size(); ++l)
-          j(l) += w * fv.shape_value(l, q);
-      }
+      add(part->fe_values(n, mapping, fe));
+      continue;
+    }
+    if (empty)
+      continue;
+    // The clipped rule can hold 10^5-10^6 points on a coarse cell: it is evaluated in
+    // slices of at most about 4096 points, so that its FEValues stay small.
+    const Quadrature<1> &q0 = clipped[0], &q1 = clipped[1];
+    const unsigned int slice = std::max<unsigned int>(1, 4096 / q0.size());
+    for (unsigned int k0 = 0; k0 < q1.size(); k0 += slice)
+    {
+      const unsigned int k1 = std::min<unsigned int>(q1.size(), k0 + slice);
+      const Quadrature<1> part_q1(
+          std::vector<Point<1>>(q1.get_points().begin() + k0, q1.get_points().begin() + k1),
+          std::vector<double>(q1.get_weights().begin() + k0, q1.get_weights().begin() + k1));
+      FEValues<dim> fv(mapping, fe, Part::tensor_rule(q0, part_q1),
+                       update_values | update_quadrature_points | update_JxW_values);
+      add(fv);
     }
   }
   return nonzero;
