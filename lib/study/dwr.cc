@@ -1,7 +1,9 @@
 #include "study/dwr.h"
 #include "study/memory_estimate.h"
 #include "study/options.h"
+#include "study/loop_outputs.h"
 #include "study/probes.h"
+#include "study/time_error.h"
 
 #include "adaptivity/estimator.h"
 #include "adaptivity/lifted_goal.h"
@@ -12,24 +14,20 @@
 #include "goal/goal.h"
 #include "io/loop_report.h"
 #include "io/table.h"
-#include "io/vtu.h"
 #include "slab/adjoint_march.h"
 #include "slab/primal_march.h"
 
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/timer.h>
-#include <deal.II/base/utilities.h>
 #include <deal.II/grid/tria.h>
 
 #include <array>
 #include <cmath>
-#include <functional>
 #include <future>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <sstream>
-#include <tuple>
 
 namespace anisodwr
 {
@@ -38,76 +36,6 @@ using namespace dealii;
 namespace
 {
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
-std::string num(double v)
-{
-  return json_number(v, 12);
-}
-
-double goal_value(const Space<2> &space, const GoalSpec &goal, const TimeMesh &mesh,
-                  const TemporalBasis &basis, const std::vector<Vector<double>> &U)
-{
-  return evaluate_goal(assemble_goal_vectors(space, {unweighted(goal)}), mesh, basis, U);
-}
-
-/// J(inf) - J(N) from J(N), J(2N), J(4N) and the observed order k (Richardson): with
-/// d1 = J(2N) - J(N), d2 = J(4N) - J(2N), k = log2(d1 / d2),
-/// J(inf) - J(N) = d1 + d2 2^k / (2^k - 1); NaN, NaN when the differences do not
-/// contract (k <= 1/2).
-std::pair<double, double> richardson(const std::array<double, 3> &J)
-{
-  const double d1 = J[1] - J[0], d2 = J[2] - J[1];
-  const double k = std::log2(d1 / d2);
-  if (!(k > 0.5) || !std::isfinite(k))
-    return {nan, nan};
-  // d1, d2, d2 / 2^k, d2 / 4^k, ...: J(inf) - J(N) = d1 + d2 + d2 / (2^k - 1)
-  return {d1 + d2 * std::pow(2., k) / (std::pow(2., k) - 1.), k};
-}
-
-/// The temporal part of the goal error on the current spatial mesh, measured (row.err_tau,
-/// err_tau_order for the weighted goal, err_tau_goal per goal unweighted): the primal
-/// is solved on the time mesh, bisected once and bisected twice, all three with the
-/// SUPG parameters of the twice-bisected mesh (delta_K <= supg_tau_factor * tau_n / 4,
-/// built by `space(s)` with the bound scaled by s = 1/4, 1/2, 1): delta_K bounded by the
-/// slab length is what keeps small slabs stable, so that only the time mesh changes
-/// between the three and not the spatial discretization; then richardson().
-void measure_time_error(const std::function<std::unique_ptr<Space<2>>(double)> &space,
-                        const TimeMesh &mesh, const TemporalBasis &basis,
-                        const SlabSolverOptions &solver, const std::vector<GoalSpec> &goals,
-                        const MarchOptions &opt, LoopRow &row)
-{
-  auto bisect = [](const TimeMesh &m)
-  { return refine_time(m, std::vector<double>(m.n_slabs(), 1.), 1.); };
-  // J[0]: the weighted goal, J[1 + i]: goal i unweighted; per level
-  std::vector<std::array<double, 3>> J(goals.size() + 1);
-  TimeMesh m = mesh;
-  for (unsigned int level = 0; level <= 2; ++level)
-  {
-    if (level > 0)
-      m = bisect(m);
-    const auto primal = space(std::pow(2., level) / 4.);
-    SlabOperator<2> op(*primal, basis, solver);
-    const auto U = march_primal(*primal, m, basis, op, opt);
-    J[0][level] = 0; // J_w = sum_i w_i J_i, as weigh_goals forms row.J
-    for (std::size_t i = 0; i < goals.size(); ++i)
-    {
-      J[1 + i][level] = goal_value(*primal, goals[i], m, basis, U);
-      J[0][level] += goals[i].weight * J[1 + i][level];
-    }
-  }
-  std::cout << "  " << opt.label << ": temporal error check, J_w with " << mesh.n_slabs()
-            << ", " << 2 * mesh.n_slabs() << ", " << 4 * mesh.n_slabs()
-            << " slabs: " << num(J[0][0]) << ", " << num(J[0][1]) << ", " << num(J[0][2])
-            << std::endl;
-  std::tie(row.err_tau, row.err_tau_order) = richardson(J[0]);
-  if (std::isnan(row.err_tau))
-    std::cout << "  " << opt.label
-              << ": temporal error check does not contract; err_tau not reported"
-              << std::endl;
-  row.err_tau_goal.clear();
-  for (std::size_t i = 0; i < goals.size(); ++i)
-    row.err_tau_goal.push_back(richardson(J[1 + i]).first);
-}
 
 /// The loop table's copy of the estimator's sums.
 void copy_indicators(const Indicators<2> &ind, LoopRow &row)
@@ -193,9 +121,6 @@ private:
   void estimate_by_goal(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
                         const Space<2> &adjoint, std::vector<std::vector<Vector<double>>> Z,
                         const std::vector<Vector<double>> &U, const HigherOrderPrimal *hi);
-  /// Probes and cut lines of u(T), and the VTU of the loop.
-  void write_loop_outputs(LoopRow &row, const Space<2> &primal, const Vector<double> &uT,
-                          const Indicators<2> &ind, const std::vector<double> &ar_cell);
   /// True if the run ends after this loop (stop_reason says why).
   bool stop_after(const LoopRow &row);
   /// Tables, summary and console line of a finished loop.
@@ -310,10 +235,10 @@ void AdaptiveLoop::run()
             << ")-dG(" << prm.discretization.r << "), adjoint cG(" << q << "), "
             << name(prm.adaptivity.mode) << ", goals:";
   for (std::size_t g = 0; g < goals.size(); ++g)
-    std::cout << " " << goals[g].name << (has_exact ? " = " + num(J_exact[g]) : "")
+    std::cout << " " << goals[g].name << (has_exact ? " = " + json_number(J_exact[g], 12) : "")
               << (std::isnan(goals[g].reference)
                       ? ""
-                      : " +- " + num(goals[g].reference_uncertainty) + " (reference)");
+                      : " +- " + json_number(goals[g].reference_uncertainty, 12) + " (reference)");
   std::cout << "\n";
   print_loop_header(std::cout);
   try
@@ -433,7 +358,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
 
   Vector<double> uT;
   combine_blocks(U.back(), basis.right_trace(), uT);
-  write_loop_outputs(row, primal, uT, ind, ar_cell);
+  write_loop_outputs(prm, *scene, probe_spec, row, primal, uT, ind, ar_cell, vtu_records);
   return true;
 }
 
@@ -616,40 +541,6 @@ void AdaptiveLoop::weigh_goals(LoopRow &row) const
     if (has_exact)
       row.J_exact = (g ? row.J_exact : 0.) + goals[g].weight * J_exact[g];
   }
-}
-
-void AdaptiveLoop::write_loop_outputs(LoopRow &row, const Space<2> &primal,
-                                      const Vector<double> &uT, const Indicators<2> &ind,
-                                      const std::vector<double> &ar_cell)
-{
-  const ProbeResult probes = evaluate_probes(primal.dof_handler(), primal.mapping(), uT,
-                                             probe_spec, *scene, scene->end_time);
-  row.probes = probes.named();
-  row.u_min = probes.u_min;
-  row.u_max = probes.u_max;
-  const unsigned int loop = row.loop;
-  for (const auto &l : probe_spec.cut_lines)
-    write_line_csv(
-        prm.output.directory + "/cut_" + l.name + "_loop-" +
-            Utilities::int_to_string(loop, 4) + ".csv",
-        LineEvaluator<2>(primal.dof_handler(), primal.mapping(), uT, l.start, l.end),
-        2 * prm.discretization.p);
-  if (!(prm.output.vtu_loops > 0 &&
-        (loop % prm.output.vtu_loops == 0 || loop == prm.adaptivity.loops)))
-    return;
-  Vector<double> ex(ar_cell.size()), ey(ar_cell.size()), et(ar_cell.size()),
-      ar(ar_cell.begin(), ar_cell.end());
-  for (unsigned int c = 0; c < ar_cell.size(); ++c)
-  {
-    ex[c] = ind.eta_h_cell[c][0];
-    ey[c] = ind.eta_h_cell[c][1];
-    et[c] = ind.eta_tau_cell[c];
-  }
-  vtu_records.emplace_back(
-      loop,
-      write_vtu(primal, uT, scene->end_time, prm.output.directory, "loop", loop,
-                {{"eta_hx", ex}, {"eta_hy", ey}, {"eta_tau", et}, {"aspect_ratio", ar}}));
-  write_pvd(prm.output.directory, "loops", vtu_records);
 }
 
 bool AdaptiveLoop::stop_after(const LoopRow &row)

@@ -1,0 +1,27 @@
+#pragma once
+// The per-loop outputs of u_h(T) in a DWR run: probes, cut lines and the VTU.
+#include "adaptivity/estimator.h"
+#include "config/parameters.h"
+#include "io/loop_report.h"
+#include "scene/scene.h"
+#include "space/space.h"
+#include "study/probes.h"
+
+#include <deal.II/lac/vector.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace anisodwr
+{
+/// Probes of u(T) into row (row.probes, u_min, u_max), the cut lines of probe_spec to
+/// cut_<line>_loop-NNNN.csv, and in every output.vtu_loops-th loop and the last the
+/// VTU of u(T) with the indicators and aspect ratios per cell (record added to
+/// vtu_records, loops.pvd rewritten).
+void write_loop_outputs(const Parameters &prm, const Scene<2> &scene,
+                        const ProbeSpec<2> &probe_spec, LoopRow &row, const Space<2> &primal,
+                        const dealii::Vector<double> &uT, const Indicators<2> &ind,
+                        const std::vector<double> &ar_cell,
+                        std::vector<std::pair<double, std::string>> &vtu_records);
+} // namespace anisodwr
