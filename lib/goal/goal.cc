@@ -58,6 +58,10 @@ template <int dim> Point<dim> to_point(const GoalSpec &goal, const std::vector<d
 }
 } // namespace
 
+/// The largest quadrature rule of a goal part on one cell whose FEValues are built at
+/// once (and cached per sub-cell count); larger ones are evaluated in slices.
+constexpr unsigned int max_rule_points = 4096;
+
 /// One goal of a LocalGoal: its density (mollifier or 1/|rectangle|) or, for s = 0,
 /// the point and the cell that holds it.
 template <int dim> struct LocalGoal<dim>::Part
@@ -317,18 +321,27 @@ bool LocalGoal<dim>::cell_vector(
     };
     bool capped = false, empty = false;
     const auto n = part->sub_cells(cell, &capped);
-    std::array<Quadrature<1>, dim> clipped;
-    if (!(capped && part->clipped_rule(cell, mapping, fe, clipped, empty)))
+    std::array<Quadrature<1>, dim> q;
+    if (capped && part->clipped_rule(cell, mapping, fe, q, empty))
     {
-      add(part->fe_values(n, mapping, fe));
-      continue;
+      if (empty)
+        continue;
     }
-    if (empty)
-      continue;
-    // The clipped rule can hold 10^5-10^6 points on a coarse cell: it is evaluated in
-    // slices of at most about 4096 points, so that its FEValues stay small.
-    const Quadrature<1> &q0 = clipped[0], &q1 = clipped[1];
-    const unsigned int slice = std::max<unsigned int>(1, 4096 / q0.size());
+    else
+    {
+      const QGauss<1> base(fe.degree + 2);
+      if (n[0] * n[1] * base.size() * base.size() <= max_rule_points)
+      {
+        add(part->fe_values(n, mapping, fe));
+        continue;
+      }
+      q[0] = QIterated<1>(base, n[0]);
+      q[1] = QIterated<1>(base, n[1]);
+    }
+    // A rule of a small support on a coarse cell can hold 10^5-10^6 points: it is
+    // evaluated in slices of at most max_rule_points, so that its FEValues stay small.
+    const Quadrature<1> &q0 = q[0], &q1 = q[1];
+    const unsigned int slice = std::max<unsigned int>(1, max_rule_points / q0.size());
     for (unsigned int k0 = 0; k0 < q1.size(); k0 += slice)
     {
       const unsigned int k1 = std::min<unsigned int>(q1.size(), k0 + slice);
