@@ -27,4 +27,30 @@ print(("ok" if ok else "FAIL") + f": dG({r}): J error {err:.6e}, measured tempor
 sys.exit(0 if ok else 1)
 PY
 done
+
+# adaptivity.time_balance: slabs are bisected only in loops with |eta_tau| >=
+# time_balance (|eta_h,x| + |eta_h,y|); N_t of the next loop follows the recorded parts
+for b in 0 1; do
+  out="$tmp/balance$b"
+  "$bin" run "$src/config/moving_hump_paper.json" --set adaptivity.loops=5 \
+    --set adaptivity.theta_tau=0.5 --set adaptivity.time_balance=$b \
+    --set output.vtu_loops=0 --output "$out" >/dev/null 2>&1 ||
+    { echo "FAIL: time_balance = $b: the run failed"; fail=1; continue; }
+  /usr/bin/python3 - "$out/loops.csv" "$b" <<'PY' || fail=1
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+b = float(sys.argv[2])
+kinds = set()
+for x, y in zip(rows, rows[1:]):
+    refine = abs(float(x["eta_tau"])) >= b * (abs(float(x["eta_hx"])) + abs(float(x["eta_hy"])))
+    n, m = int(x["N_t"]), int(y["N_t"])
+    want = n + math.ceil(0.5 * n) if refine else n
+    if m != want:
+        sys.exit(f"FAIL: time_balance = {b}, loop {x['loop']}: N_t {n} -> {m}, want {want}")
+    kinds.add(refine)
+if b == 1 and kinds != {True, False}:
+    sys.exit(f"FAIL: time_balance = 1 should both bisect and keep slabs in 5 loops: {kinds}")
+print(f"ok: time_balance = {b}: N_t " + " ".join(r["N_t"] for r in rows))
+PY
+done
 exit $fail

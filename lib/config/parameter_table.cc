@@ -356,6 +356,11 @@ std::vector<Entry> adaptivity_entries()
        "Fraction of slabs bisected (largest |eta_tau^n|), in [0,1]; 0 keeps the time "
        "mesh.",
        "a fraction in [0, 1]", Check::fraction},
+      {"adaptivity", "time_balance", "0", m(&S::time_balance), real(0.),
+       "Bisect slabs (theta_tau) only in loops whose temporal estimate is not small "
+       "against the spatial one: |eta_tau| >= time_balance (|eta_h,x| + |eta_h,y|), the "
+       "combined goal's signed parts; 0: in every loop. The spatial mesh is refined in "
+       "every loop."},
       {"adaptivity", "theta_coarsen", "0", m(&S::theta_coarsen), real(0.),
        "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1].",
        "a fraction in [0, 1]", Check::fraction},

@@ -136,6 +136,8 @@ struct AdaptivitySection
   unsigned int loops = 6;
   double theta_h = 0.25;
   double theta_tau = 0.2;
+  /// bisect slabs only in loops with |eta_tau| >= time_balance (|eta_h,x| + |eta_h,y|)
+  double time_balance = 0.;
   double theta_coarsen = 0.;
   double tolerance = 0.;
   ToleranceMeasure tolerance_measure = ToleranceMeasure::parts;

@@ -257,7 +257,9 @@ void AdaptiveLoop::run()
         const MarkingStats m = mark_cells(tria, ind, marking);
         row.marking = {{m.marked, m.cut_x, m.cut_y, m.cut_both, m.closure}};
         tria.execute_coarsening_and_refinement();
-        mesh = refine_time(mesh, ind.eta_tau_slab, prm.adaptivity.theta_tau);
+        if (std::abs(row.eta_tau) >=
+            prm.adaptivity.time_balance * (std::abs(row.eta_h[0]) + std::abs(row.eta_h[1])))
+          mesh = refine_time(mesh, ind.eta_tau_slab, prm.adaptivity.theta_tau);
         row.t_refine = t.wall_time();
       }
       row.mem = mpi_max(peak_memory_mb()); // the same decisions on every rank
