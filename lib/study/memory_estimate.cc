@@ -19,8 +19,10 @@ constexpr double MB = 1024. * 1024.;
 /// estimator and march scratch).
 constexpr double bytes_per_dof = 200.;
 /// Resident memory the process gains on its first solves beyond what it had before
-/// (library code paged in, solver and quadrature initialization), MB.
-constexpr double startup_mb = 44.;
+/// (library code paged in, solver and quadrature initialization), MB: calibrated on
+/// moving_hump.json, moving_hump_p1.json and hemker.json (doc/results.md, "Memory
+/// estimate of the shipped DWR configs").
+constexpr double startup_mb = 30.;
 /// Iterative path: ILU factors and the Tpetra copy of the slab matrix, per nonzero.
 constexpr double precondition_bytes_per_nnz = 36.;
 
