@@ -81,6 +81,13 @@ expect 2 "key 'goal.locations' is empty" -- run "$cfg" --output "$(o)" --set goa
 printf '{"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "0.5"}}' >"$tmp/loc.json"
 expect 2 "loc.json: invalid value '0.5' in key 'goal.locations'" -- run "$tmp/loc.json" --output "$(o)"
 
+# numbers that underflow double precision: one line naming source and key, exit 2
+expect 2 "^anisodwr: input error: --set: invalid value '1e-320' for key 'scene.epsilon': it underflows double precision; expected 0 or a normal number of magnitude >= 2.2e-308$" -- run "$cfg" --output "$(o)" --set scene.epsilon=1e-320
+printf '{"scene": {"epsilon": 4.9e-324}}' >"$tmp/subnormal.json"
+expect 2 "^anisodwr: input error: $tmp/subnormal.json: invalid value '4.9e-324' for key 'scene.epsilon': it underflows double precision" -- run "$tmp/subnormal.json" --output "$(o)"
+expect 2 "^anisodwr: input error: --set: invalid value '1e-400' for key 'adaptivity.tolerance': it underflows" -- run "$cfg" --output "$(o)" --set adaptivity.tolerance=1e-400
+expect 2 "^anisodwr: input error: --set: invalid value '0.5,1e-320' in key 'goal.locations': '1e-320' underflows double precision" -- run "$cfg" --output "$(o)" --set goal.kind=point --set goal.locations=0.5,1e-320
+
 # a failed direct solve: one line on stderr, the full text JSON-escaped in summary.json
 out=$(timeout 20 "$bin" run "$cfg" --output "$tmp/solve" --set adaptivity.loops=1 --set discretization.delta0=1e308 --set discretization.supg_tau_factor=0 --set adaptivity.time_indicator=average 2>&1 >/dev/null)
 rc=$?

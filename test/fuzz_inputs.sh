@@ -32,6 +32,16 @@ for k in $reals; do
   for v in -1 abc nan inf 1e999 '' 1,2; do check "$k" -- "$cfg" --set "$k=$v"; done
 done
 for k in scene.epsilon scene.end_time; do check "$k" -- "$cfg" --set "$k=0"; done
+# numbers that underflow double precision: subnormal (1e-320, 4.9e-324) or rounded to 0
+for k in $reals; do
+  for v in 1e-320 4.9e-324 1e-400; do
+    check "for key '$k': it underflows double precision" -- "$cfg" --set "$k=$v"
+  done
+done
+for v in '0.5,1e-320' '4.9e-324,0.5'; do
+  check "in key 'goal.locations': " -- "$cfg" --set goal.kind=point --set "goal.locations=$v"
+done
+check "in key 'goal.weights': '1e-400' underflows" -- "$cfg" --set goal.weights=1e-400
 for k in adaptivity.theta_h adaptivity.theta_tau adaptivity.theta_coarsen; do
   check "$k" -- "$cfg" --set "$k=1.01"
 done
@@ -86,6 +96,10 @@ true
 {"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "9,9"}}
 {"a": {"b": {"c": {}}}}
 {"scene": {"epsilon": 1e-6}} trailing
+{"scene": {"epsilon": 1e-320}}
+{"scene": {"end_time": 4.9e-324}}
+{"discretization": {"delta0": 1e-400}}
+{"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "0.5, 1e-320"}}
 CORPUS
 python3 -c "print('{\"a\": ' * 5000)" >"$tmp/deep.json"
 check "deep.json" -- "$tmp/deep.json"

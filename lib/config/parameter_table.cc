@@ -1,5 +1,7 @@
 #include "config/parameter_table.h"
 
+#include "base/parse_number.h"
+
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -20,7 +22,11 @@ template <class T, class Ref> Binding bind(Ref ref)
   {
     T &x = ref(p);
     if constexpr (std::is_same_v<T, double>)
-      x = std::stod(v);
+    {
+      if (parse_double(v, x) != NumberStatus::ok)
+        throw std::logic_error("'" + v +
+                               "' is not a finite double (checked by the reader)");
+    }
     else if constexpr (std::is_same_v<T, unsigned int>)
       x = std::stoul(v);
     else if constexpr (std::is_same_v<T, bool>)

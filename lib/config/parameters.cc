@@ -2,6 +2,7 @@
 
 #include "base/errors.h"
 #include "base/json_escape.h"
+#include "base/parse_number.h"
 #include "config/parameter_table.h"
 
 #include <boost/property_tree/json_parser.hpp>
@@ -93,6 +94,13 @@ public:
       throw InputError(origin + ": invalid value '" + value + "' for key '" + section +
                        "." + key + "'; expected " + found->expected() + " (" +
                        found->doc + ")");
+    if (double v = 0; found->kind() == Kind::real)
+      if (const auto status = parse_double(value, v); status != NumberStatus::ok)
+        throw InputError(
+            origin + ": invalid value '" + value + "' for key '" + section + "." + key +
+            "': " +
+            (status == NumberStatus::underflow ? "it " + underflow_text()
+                                               : "expected " + found->expected()));
     values[section + "." + key] = value;
     origins[section + "." + key] = origin;
   }
@@ -231,7 +239,12 @@ private:
   }
 
   std::string get(const std::string &k) const { return values.at(k); }
-  double real(const std::string &k) const { return std::stod(get(k)); }
+  double real(const std::string &k) const
+  {
+    double v = 0;
+    parse_double(get(k), v); // checked in set()
+    return v;
+  }
   /// v <= 1 (Check::fraction)
   void fraction(const std::string &k) const
   {

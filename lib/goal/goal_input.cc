@@ -1,6 +1,7 @@
 #include "goal/goal_input.h"
 
 #include "base/errors.h"
+#include "base/parse_number.h"
 
 #include <cmath>
 #include <sstream>
@@ -39,19 +40,18 @@ std::vector<double> numbers(const std::string &s, const std::string &key, unsign
 {
   std::vector<double> v;
   for (const auto &x : split(s, ','))
-    try
-    {
-      std::size_t used = 0;
-      v.push_back(std::stod(x, &used));
-      if (used != x.size() || !std::isfinite(v.back()))
-        throw std::invalid_argument(x);
-    }
-    catch (const std::exception &)
-    {
+  {
+    double value = 0;
+    const NumberStatus status = parse_double(x, value);
+    if (status == NumberStatus::underflow)
+      throw InputError(source + ": invalid value '" + s + "' in key '" + key + "': '" +
+                       x + "' " + underflow_text());
+    if (status != NumberStatus::ok)
       throw InputError(source + ": invalid value '" + s + "' in key '" + key +
                        "'; expected " + std::to_string(n) +
                        " comma-separated finite numbers");
-    }
+    v.push_back(value);
+  }
   if (v.size() != n)
     throw InputError(source + ": invalid value '" + s + "' in key '" + key +
                      "'; expected " + std::to_string(n) +
