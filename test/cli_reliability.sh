@@ -88,6 +88,25 @@ expect 2 "^anisodwr: input error: $tmp/subnormal.json: invalid value '4.9e-324' 
 expect 2 "^anisodwr: input error: --set: invalid value '1e-400' for key 'adaptivity.tolerance': it underflows" -- run "$cfg" --output "$(o)" --set adaptivity.tolerance=1e-400
 expect 2 "^anisodwr: input error: --set: invalid value '0.5,1e-320' in key 'goal.locations': '1e-320' underflows double precision" -- run "$cfg" --output "$(o)" --set goal.kind=point --set goal.locations=0.5,1e-320
 
+# solver combinations the slab solvers refuse: exit 2 before anything is written (a stale
+# summary.json in the output directory stays, no lock file is made); unused with
+# solver.type = direct
+d=$tmp/untouched
+mkdir -p "$d"
+echo stale >"$d/summary.json"
+for type in iterative auto; do
+  expect 2 "^anisodwr: input error: --set: invalid combination solver.type = $type, solver.krylov = bicgstab, solver.inner_iterations = 5: .*expected solver.krylov = gmres or fgmres" -- run "$cfg" --output "$d" --set solver.type=$type --set solver.krylov=bicgstab --set solver.inner_iterations=5
+done
+printf '{"solver": {"krylov": "bicgstab", "inner_iterations": 3}}' >"$tmp/combination.json"
+expect 2 "^anisodwr: input error: $tmp/combination.json and --set: invalid combination solver.type = iterative" -- run "$tmp/combination.json" --output "$d" --set solver.type=iterative
+expect 0 "results:" -- run "$cfg" --output "$(o)" --set adaptivity.loops=1 --set solver.type=direct --set solver.krylov=bicgstab --set solver.inner_iterations=5
+if [ "$(cat "$d/summary.json")" != stale ] || [ -e "$d/.anisodwr.lock" ]; then
+  echo "FAIL: a refused config touched an output directory: $(ls -A "$d")"
+  fail=1
+else
+  echo "ok: refused configs wrote nothing"
+fi
+
 # a failed direct solve: one line on stderr, the full text JSON-escaped in summary.json
 out=$(timeout 20 "$bin" run "$cfg" --output "$tmp/solve" --set adaptivity.loops=1 --set discretization.delta0=1e308 --set discretization.supg_tau_factor=0 --set adaptivity.time_indicator=average 2>&1 >/dev/null)
 rc=$?

@@ -42,6 +42,11 @@ for v in '0.5,1e-320' '4.9e-324,0.5'; do
   check "in key 'goal.locations': " -- "$cfg" --set goal.kind=point --set "goal.locations=$v"
 done
 check "in key 'goal.weights': '1e-400' underflows" -- "$cfg" --set goal.weights=1e-400
+# combinations of solver keys the slab solvers refuse
+for type in iterative auto; do
+  check "invalid combination solver.type = $type, solver.krylov = bicgstab, solver.inner_iterations = 5" \
+    -- "$cfg" --set solver.type=$type --set solver.krylov=bicgstab --set solver.inner_iterations=5
+done
 for k in adaptivity.theta_h adaptivity.theta_tau adaptivity.theta_coarsen; do
   check "$k" -- "$cfg" --set "$k=1.01"
 done
@@ -100,6 +105,7 @@ true
 {"scene": {"end_time": 4.9e-324}}
 {"discretization": {"delta0": 1e-400}}
 {"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "0.5, 1e-320"}}
+{"solver": {"type": "auto", "krylov": "bicgstab", "inner_iterations": 5}}
 CORPUS
 python3 -c "print('{\"a\": ' * 5000)" >"$tmp/deep.json"
 check "deep.json" -- "$tmp/deep.json"

@@ -224,6 +224,7 @@ public:
     for (const auto &e : entries())
       if (e.check == Check::bounded_positive)
         bounded_positive(e.name());
+    check_solver_combination(p);
     for (const auto &[key, value] : values)
       p.sources[key] = origin(key);
     return p;
@@ -239,6 +240,43 @@ private:
   }
 
   std::string get(const std::string &k) const { return values.at(k); }
+
+  /// Where the keys' values came from, for a message on their combination: the sources
+  /// other than the defaults, each once ("--set", "a.json and --set").
+  std::string origins_of(const std::vector<std::string> &keys) const
+  {
+    std::vector<std::string> seen;
+    std::string all;
+    for (const auto &k : keys)
+      if (const std::string o = origin(k);
+          o != "default" && std::find(seen.begin(), seen.end(), o) == seen.end())
+      {
+        seen.push_back(o);
+        all += (all.empty() ? "" : " and ") + o;
+      }
+    return all.empty() ? "default" : all;
+  }
+
+  /// Combinations of solver keys that the slab solvers refuse, refused here before
+  /// anything is written: an inner GMRES (solver.inner_iterations > 0) changes the
+  /// preconditioner between applications, which BiCGStab cannot take. Checked for
+  /// every solver.type that can solve by Krylov (iterative, auto).
+  void check_solver_combination(const Parameters &p) const
+  {
+    const IterativeOptions &it = p.solver.iterative;
+    if (it.inner_iterations == 0 || it.krylov != Krylov::bicgstab ||
+        p.solver.type == SolverType::direct || p.solver.type == SolverType::modes)
+      return;
+    throw InputError(
+        origins_of({"solver.krylov", "solver.inner_iterations", "solver.type"}) +
+        ": invalid combination solver.type = " + get("solver.type") +
+        ", solver.krylov = bicgstab, solver.inner_iterations = " +
+        get("solver.inner_iterations") +
+        ": inner GMRES iterations change the preconditioner between applications; "
+        "expected solver.krylov = gmres or fgmres (run as flexible GMRES), or "
+        "solver.inner_iterations = 0");
+  }
+
   double real(const std::string &k) const
   {
     double v = 0;
