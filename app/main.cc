@@ -111,7 +111,12 @@ int main(int argc, char **argv)
       if (args[i] == "--set")
         overrides.push_back(args[++i]);
       else if (args[i] == "--output")
+      {
         output = args[++i];
+        if (output.empty())
+          throw InputError("--output: invalid value ''; expected the path of a directory "
+                           "(not empty)");
+      }
       else
         throw InputError("unknown option '" + args[i] + "'; expected --output DIR or --set "
                          "section.key=value");

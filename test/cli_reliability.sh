@@ -100,8 +100,17 @@ done
 printf '{"solver": {"krylov": "bicgstab", "inner_iterations": 3}}' >"$tmp/combination.json"
 expect 2 "^anisodwr: input error: $tmp/combination.json and --set: invalid combination solver.type = iterative" -- run "$tmp/combination.json" --output "$d" --set solver.type=iterative
 expect 0 "results:" -- run "$cfg" --output "$(o)" --set adaptivity.loops=1 --set solver.type=direct --set solver.krylov=bicgstab --set solver.inner_iterations=5
-if [ "$(cat "$d/summary.json")" != stale ] || [ -e "$d/.anisodwr.lock" ]; then
-  echo "FAIL: a refused config touched an output directory: $(ls -A "$d")"
+# an empty output directory, from --output, a file or --set (run in an empty directory:
+# the config's own output.directory must not appear there)
+printf '{"output": {"directory": ""}}' >"$tmp/nodir.json"
+mkdir -p "$tmp/cwd"
+cd "$tmp/cwd"
+expect 2 "^anisodwr: input error: --output: invalid value ''; expected the path of a directory" -- run "$cfg" --output ""
+expect 2 "^anisodwr: input error: $tmp/nodir.json: invalid value '' for key 'output.directory'; expected the path of a directory" -- run "$tmp/nodir.json"
+expect 2 "^anisodwr: input error: --set: invalid value '' for key 'output.directory'" -- run "$cfg" --set output.directory=
+cd - >/dev/null
+if [ "$(cat "$d/summary.json")" != stale ] || [ -e "$d/.anisodwr.lock" ] || [ -n "$(ls -A "$tmp/cwd")" ]; then
+  echo "FAIL: a refused config touched an output directory: $(ls -A "$d" "$tmp/cwd")"
   fail=1
 else
   echo "ok: refused configs wrote nothing"

@@ -224,6 +224,10 @@ public:
     for (const auto &e : entries())
       if (e.check == Check::bounded_positive)
         bounded_positive(e.name());
+    if (get("output.directory").empty())
+      throw InputError(origin("output.directory") +
+                       ": invalid value '' for key 'output.directory'; expected the path "
+                       "of a directory (not empty)");
     check_solver_combination(p);
     for (const auto &[key, value] : values)
       p.sources[key] = origin(key);
