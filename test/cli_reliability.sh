@@ -88,6 +88,18 @@ expect 2 "^anisodwr: input error: $tmp/subnormal.json: invalid value '4.9e-324' 
 expect 2 "^anisodwr: input error: --set: invalid value '1e-400' for key 'adaptivity.tolerance': it underflows" -- run "$cfg" --output "$(o)" --set adaptivity.tolerance=1e-400
 expect 2 "^anisodwr: input error: --set: invalid value '0.5,1e-320' in key 'goal.locations': '1e-320' underflows double precision" -- run "$cfg" --output "$(o)" --set goal.kind=point --set goal.locations=0.5,1e-320
 
+# messages: a NUL character in a text value, empty sections (accepted, or an unknown
+# name), bounded ranges printed as they are
+printf '{"scene": {"variant": "a\\u0000b"}}' >"$tmp/nul.json"
+expect 2 "^anisodwr: input error: $tmp/nul.json: invalid value for key 'scene.variant': it contains a NUL character" -- run "$tmp/nul.json" --output "$(o)"
+printf '{"study": {"mode": "single"}, "goal": {}, "output": {"vtu_every": 0, "progress": false}}' >"$tmp/empty_section.json"
+expect 0 "results:" -- run "$tmp/empty_section.json" --output "$(o)"
+printf '{"scenery": {}}' >"$tmp/empty_unknown.json"
+expect 2 "empty_unknown.json: unknown section 'scenery'" -- run "$tmp/empty_unknown.json" --output "$(o)"
+expect 2 "^anisodwr: input error: --set: invalid value '-0.01' for key 'adaptivity.kappa'; expected a fraction in \\[0, 1\\]" -- run "$cfg" --output "$(o)" --set adaptivity.kappa=-0.01
+expect 2 "^anisodwr: input error: --set: invalid value '30' for key 'solver.ilu_fill'; expected a number with 0 <= v <= 10" -- run "$cfg" --output "$(o)" --set solver.ilu_fill=30
+expect 2 "^anisodwr: input error: --set: invalid value '-1' for key 'adaptivity.tolerance'; expected a number >= 0 (" -- run "$cfg" --output "$(o)" --set adaptivity.tolerance=-1
+
 # solver combinations the slab solvers refuse: exit 2 before anything is written (a stale
 # summary.json in the output directory stays, no lock file is made); unused with
 # solver.type = direct

@@ -17,6 +17,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
 namespace anisodwr
@@ -68,9 +69,15 @@ public:
       values[e.name()] = e.default_value;
   }
 
-  void set(const std::string &section, const std::string &key, const std::string &value,
-           const std::string &origin)
+  /// The key section.key of the table (InputError naming `origin` if there is none;
+  /// with section_only only the section is checked and nullptr returned).
+  static const Entry *find(const std::string &section, const std::string &key,
+                           const std::string &origin, bool section_only = false)
   {
+    if (section.find('\0') != std::string::npos || key.find('\0') != std::string::npos)
+      throw InputError(origin +
+                       ": a section or key name contains a NUL character "
+                       "(\\u0000); expected the names that anisodwr defaults prints");
     std::vector<std::string> sections, keys;
     const Entry *found = nullptr;
     for (const auto &e : entries())
@@ -87,18 +94,30 @@ public:
     if (keys.empty())
       throw InputError(origin + ": unknown section '" + section + "'" +
                        suggestion(section, sections));
-    if (!found)
+    if (!found && !section_only)
       throw InputError(origin + ": unknown key '" + section + "." + key + "'" +
                        suggestion(key, keys));
+    return found;
+  }
+
+  void set(const std::string &section, const std::string &key, const std::string &value,
+           const std::string &origin)
+  {
+    const Entry *found = find(section, key, origin);
+    const std::string name = section + "." + key;
+    if (value.find('\0') != std::string::npos)
+      throw InputError(origin + ": invalid value for key '" + name +
+                       "': it contains a NUL character (\\u0000); expected " +
+                       (found->kind() == Kind::text
+                            ? std::string("text without NUL characters")
+                            : found->expected()));
     if (!found->pattern->match(value))
-      throw InputError(origin + ": invalid value '" + value + "' for key '" + section +
-                       "." + key + "'; expected " + found->expected() + " (" +
-                       found->doc + ")");
+      throw InputError(origin + ": invalid value '" + value + "' for key '" + name +
+                       "'; expected " + found->expected() + " (" + found->doc + ")");
     if (double v = 0; found->kind() == Kind::real)
       if (const auto status = parse_double(value, v); status != NumberStatus::ok)
         throw InputError(
-            origin + ": invalid value '" + value + "' for key '" + section + "." + key +
-            "': " +
+            origin + ": invalid value '" + value + "' for key '" + name + "': " +
             (status == NumberStatus::underflow ? "it " + underflow_text()
                                                : "expected " + found->expected()));
     values[section + "." + key] = value;
@@ -110,7 +129,10 @@ public:
 
   /// The top level must be an object and the nesting at most max_depth deep (the JSON
   /// reader recurses once per level; without the limit deep input overflows the stack).
-  static void check_structure(const std::string &file, const std::string &text)
+  /// Returns the top-level keys (as written, escapes not decoded) whose value is an
+  /// object: the JSON reader does not tell {} from "" or [].
+  static std::set<std::string> check_structure(const std::string &file,
+                                               const std::string &text)
   {
     std::size_t start = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
     start = text.find_first_not_of(" \t\r\n", start);
@@ -124,8 +146,10 @@ public:
                                                                    "\r\n", start) -
                                                                    start)) +
                                   "'"));
+    std::set<std::string> objects;
     unsigned int depth = 0;
     bool in_string = false;
+    std::size_t string_start = 0;
     for (std::size_t i = start; i < text.size(); ++i)
     {
       const char c = text[i];
@@ -134,10 +158,22 @@ public:
         if (c == '\\')
           ++i;
         else if (c == '"')
+        {
           in_string = false;
+          const auto colon = text.find_first_not_of(" \t\r\n", i + 1);
+          if (depth == 1 && colon != std::string::npos && text[colon] == ':')
+          {
+            const auto value = text.find_first_not_of(" \t\r\n", colon + 1);
+            if (value != std::string::npos && text[value] == '{')
+              objects.insert(text.substr(string_start, i - string_start));
+          }
+        }
       }
       else if (c == '"')
+      {
         in_string = true;
+        string_start = i + 1;
+      }
       else if (c == '[' || c == '{')
       {
         if (++depth > max_depth)
@@ -148,6 +184,7 @@ public:
       else if ((c == ']' || c == '}') && depth > 0)
         --depth;
     }
+    return objects;
   }
 
   void read_file(const std::string &file)
@@ -169,7 +206,7 @@ public:
     {
       throw InputError(file + ": cannot read the config file: " + std::strerror(errno));
     }
-    check_structure(file, text);
+    const std::set<std::string> objects = check_structure(file, text);
     boost::property_tree::ptree tree;
     try
     {
@@ -185,6 +222,11 @@ public:
     {
       if (!section.empty() && section[0] == '#')
         continue;
+      if (sub.empty() && objects.count(section))
+      {
+        find(section, "", file, true); // an empty section: only its name is checked
+        continue;
+      }
       if (sub.empty())
         throw InputError(file + ": top-level key '" + section +
                          "' must be a section object like {\"key\": value}");
@@ -280,7 +322,6 @@ private:
         "expected solver.krylov = gmres or fgmres (run as flexible GMRES), or "
         "solver.inner_iterations = 0");
   }
-
   double real(const std::string &k) const
   {
     double v = 0;
