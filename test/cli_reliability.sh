@@ -20,6 +20,22 @@ expect 2 "'nan,0.5' in key 'goal.locations'" -- run "$cfg" --output "$(o)" "${pt
 expect 2 "'1e+06' for key 'goal.radius'" -- run "$cfg" --output "$(o)" --set goal.radius=1e6
 expect 0 "results:" -- run "$cfg" --output "$(o)" "${pt[@]}" --set goal.locations="0.3,0.3; 1,1"
 
+# goals too small for the mesh never give a silent J = 0: a mollifier the cells do not
+# resolve and a thin rectangle on cells that are not axis-parallel are refused with the
+# smallest size accepted there; a thin rectangle on axis-parallel cells is integrated
+# exactly (J as over a strip 100 times wider, the run not stopped by the tolerance)
+expect 2 "^anisodwr: input error: --set: invalid value '1e-20' for key 'goal.radius': the weight of goal point_1 integrates to 0 instead of 1 on the mesh of loop 1 .*the smallest radius (in steps of 2) accepted there is [0-9.e+-]*$" -- run "$cfg" --output "$(o)" "${pt[@]}" --set goal.locations=0.5,0.5 --set goal.radius=1e-20
+expect 2 "^anisodwr: input error: --set: invalid value '1.5,0.5,1.501,1.5' in key 'goal.locations': the weight of goal mean_1 integrates to 0.98[0-9]* instead of 1 .*accepted there is 0.008 x 1$" -- run "$hemker" --output "$(o)" "${mean[@]}" --set goal.reference= --set goal.locations=1.5,0.5,1.501,1.5
+strip=(run "$hemker" --set goal.kind=mean --set goal.reference= --set adaptivity.tolerance=1e-6)
+expect 0 "stopped: max loops" -- "${strip[@]}" --output "$tmp/strip" --set adaptivity.loops=2 --set goal.locations=4,0.5,4.001,1.5
+expect 0 "results:" -- "${strip[@]}" --output "$tmp/strip_wide" --set adaptivity.loops=1 --set goal.locations=4,0.5,4.1,1.5
+if python3 - "$tmp/strip" "$tmp/strip_wide" <<'PY'; then echo "ok: thin strip integrated exactly"; else echo "FAIL: thin strip"; fail=1; fi
+import json, sys
+J = [json.load(open(d + "/summary.json"))["loops"][0]["goals"]["mean_1"]["J_h"] for d in sys.argv[1:]]
+print(J)
+assert abs(J[0]) > 0.1 and abs(J[0] - J[1]) < 1e-3 * abs(J[1])
+PY
+
 # goal.reference: the error columns against given values, marked in summary.json
 expect 2 "invalid value '2.6' for key 'goal.reference'; expected 2 comma-separated values" -- run "$hemker" --output "$(o)" --set goal.reference=2.6
 expect 2 "goal.reference'; the uncertainty of goal u_xe1_I must be >= 0" -- run "$hemker" --output "$(o)" --set goal.reference="2.6+--1, 1e-3"

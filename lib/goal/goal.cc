@@ -80,7 +80,7 @@ template <int dim> struct LocalGoal<dim>::Part
   /// Sub-cells along each unit direction of `cell`: for mollifiers at most s/16 wide
   /// along that direction (a power of two), so that a long thin cell near the goal is
   /// subdivided along its length only, with at most 64^dim sub-cells in all (a long
-  /// thin cell: up to 1024 along its length); 8 per direction for a cell cut by a
+  /// thin cell: up to 1024 along its length); 32 per direction for a cell cut by a
   /// rectangle's edge, 1 inside it. `capped` tells whether a cap kept a sub-cell wider
   /// than s/16 (a cell much larger than the mollifier's support).
   SubCells sub_cells(const typename Triangulation<dim>::active_cell_iterator &cell,
@@ -119,7 +119,7 @@ template <int dim> struct LocalGoal<dim>::Part
     for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
       for (unsigned int d = 0; d < dim; ++d)
         if (cell->vertex(v)[d] < lo[d] || cell->vertex(v)[d] > hi[d])
-          n.fill(8);
+          n.fill(32);
     return n;
   }
   /// The longest edge of `cell` along unit direction d (vertices v and v + 2^d).
@@ -211,6 +211,56 @@ template <int dim> struct LocalGoal<dim>::Part
     }
     rule = q;
     return true;
+  }
+
+  /// For a mean goal on a cell that is an axis-parallel rectangle mapped affinely (its
+  /// vertices form the box and the mapping puts the centre and the edge midpoints where
+  /// the bilinear map of the vertices does): the Gauss rule of degree fe.degree + 2 on
+  /// the cell's part inside the goal's rectangle, in `rule`; it integrates the shape
+  /// functions times the constant density exactly. Returns false for other cells (and
+  /// for point goals); true with `empty` set if the two do not overlap.
+  bool box_rule(const typename Triangulation<dim>::active_cell_iterator &cell,
+                const Mapping<dim> &mapping, const FiniteElement<dim> &fe,
+                std::array<Quadrature<1>, dim> &rule, bool &empty) const
+  {
+    static_assert(dim == 2, "LocalGoal: box rule for dim = 2");
+    if (goal.kind != GoalKind::mean)
+      return false;
+    const Point<dim> a = cell->vertex(0), b = cell->vertex(3);
+    const double tol = 1e-12 * a.distance(b);
+    if (!(b[0] > a[0] && b[1] > a[1]) ||
+        cell->vertex(1).distance(Point<dim>(b[0], a[1])) > tol ||
+        cell->vertex(2).distance(Point<dim>(a[0], b[1])) > tol)
+      return false;
+    for (const auto &xi : {Point<dim>(0.5, 0.5), Point<dim>(0.5, 0.), Point<dim>(0.5, 1.),
+                           Point<dim>(0., 0.5), Point<dim>(1., 0.5)})
+    {
+      const Point<dim> x = mapping.transform_unit_to_real_cell(cell, xi);
+      if (x.distance(Point<dim>(a[0] + xi[0] * (b[0] - a[0]),
+                                a[1] + xi[1] * (b[1] - a[1]))) > tol)
+        return false;
+    }
+    const QGauss<1> base(fe.degree + 2);
+    empty = false;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      const double lo_d = std::max(0., (lo[d] - a[d]) / (b[d] - a[d])),
+                   hi_d = std::min(1., (hi[d] - a[d]) / (b[d] - a[d]));
+      if (!(hi_d > lo_d))
+      {
+        empty = true;
+        return true;
+      }
+      std::vector<Point<1>> points(base.size());
+      std::vector<double> weights(base.size());
+      for (unsigned int i = 0; i < base.size(); ++i)
+      {
+        points[i][0] = lo_d + (hi_d - lo_d) * base.point(i)[0];
+        weights[i] = (hi_d - lo_d) * base.weight(i);
+      }
+      rule[d] = Quadrature<1>(points, weights);
+    }
+return true;
   }
 
   double density(const Point<dim> &x) const
@@ -322,7 +372,9 @@ bool LocalGoal<dim>::cell_vector(
     bool capped = false, empty = false;
     const auto n = part->sub_cells(cell, &capped);
     std::array<Quadrature<1>, dim> q;
-    if (capped && part->clipped_rule(cell, mapping, fe, q, empty))
+    // a cell cut by a rectangle's edge: exactly where the cell is an axis-parallel box
+    if ((n[0] > 1 && part->box_rule(cell, mapping, fe, q, empty)) ||
+        (capped && part->clipped_rule(cell, mapping, fe, q, empty)))
     {
       if (empty)
         continue;

@@ -291,6 +291,8 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   const auto primal_space = make_space(prm, *scene, tria, prm.discretization.p);
   const auto adjoint_space = make_adjoint_space(prm, *scene, tria, q);
   const Space<2> &primal = *primal_space, &adjoint = *adjoint_space;
+  if (row.loop == 1)
+    check_goal_weights(primal, goals, goal_input(prm), *scene);
   row.n_space = primal.n_dofs();
   row.n_t = mesh.n_slabs();
   row.n_tot = row.n_space * row.n_t * basis.n_dofs();
