@@ -144,6 +144,42 @@ else
   echo "ok: refused configs wrote nothing"
 fi
 
+# a full disk (a 24 kB tmpfs; needs root): exit 4, one line naming the file and the
+# reason; every file is complete (summary.json parses, table rows whole, loops.tex
+# closed) or absent, and no .tmp file stays
+full=$tmp/full
+mkdir -p "$full"
+if [ "$(id -u)" = 0 ] && mount -t tmpfs -o size=24k tmpfs "$full" 2>/dev/null; then
+  out=$(timeout 60 "$bin" run "$cfg" --output "$full/out" --set adaptivity.loops=3 2>&1 >/dev/null)
+  rc=$?
+  if [ "$rc" = 4 ] && [ "$(wc -l <<<"$out")" = 1 ] &&
+    grep -q "^anisodwr: output error: $full/out/[^ ]*: .*No space left on device$" <<<"$out" &&
+    python3 - "$full/out" <<'PY'; then
+import csv, json, os, sys
+d = sys.argv[1]
+names = os.listdir(d)
+assert not [n for n in names if n.endswith(".tmp")], names
+if "summary.json" in names:
+    json.load(open(os.path.join(d, "summary.json")))
+for n in names:
+    if n.endswith(".csv"):
+        text = open(os.path.join(d, n)).read()
+        assert text == "" or text.endswith("\n"), n
+        rows = list(csv.reader(text.splitlines()))
+        assert all(len(r) == len(rows[0]) for r in rows), n
+if "loops.tex" in names:
+    assert open(os.path.join(d, "loops.tex")).read().endswith("\\end{tabular}\n")
+PY
+    echo "ok: disk full -> 4: $out"
+  else
+    echo "FAIL: disk full -> exit $rc: $out; files: $(ls -la "$full/out")"
+    fail=1
+  fi
+  umount "$full"
+else
+  echo "skipped: disk full (mounting a tmpfs needs root)"
+fi
+
 # a failed direct solve: one line on stderr, the full text JSON-escaped in summary.json
 out=$(timeout 20 "$bin" run "$cfg" --output "$tmp/solve" --set adaptivity.loops=1 --set discretization.delta0=1e308 --set discretization.supg_tau_factor=0 --set adaptivity.time_indicator=average 2>&1 >/dev/null)
 rc=$?
