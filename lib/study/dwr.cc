@@ -229,23 +229,13 @@ void AdaptiveLoop::run()
     std::cerr << "anisodwr: warning: " << w << std::endl;
   try
   {
-    // the initial mesh, unless its predicted memory already exceeds the limit (checked
-    // first: the exact goal values take up to a second each)
+    // the initial mesh unless its predicted memory exceeds the limit (checked first:
+    // the exact goal values take up to a second each)
     check_initial_mesh_memory(prm, *scene, tria.n_active_cells(), q, goals.size(),
                               mem_limit);
     for (std::size_t g = 0; g < goals.size(); ++g)
       J_exact[g] = scene->exact() ? exact_goal(*scene, goals[g]) : goals[g].reference;
-    std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.discretization.p
-              << ")-dG(" << prm.discretization.r << "), adjoint cG(" << q << "), "
-              << name(prm.adaptivity.mode) << ", goals:";
-    for (std::size_t g = 0; g < goals.size(); ++g)
-      std::cout << " " << goals[g].name
-                << (has_exact ? " = " + json_number(J_exact[g], 12) : "")
-                << (std::isnan(goals[g].reference)
-                        ? ""
-                        : " +- " + json_number(goals[g].reference_uncertainty, 12) +
-                              " (reference)");
-    std::cout << "\n";
+    print_run_line(std::cout, prm, *scene, q, goals, J_exact, has_exact);
     print_loop_header(std::cout);
     tria.refine_global(prm.discretization.initial_refinements);
     base_mb = mpi_max(resident_memory_mb());
