@@ -32,8 +32,8 @@ Usage:
 
 Exit codes: 0 success, 2 bad input (file, JSON, key, value, output directory in use) or
 a run / DWR loop not started because its memory estimate exceeds adaptivity.max_memory_mb
-(0: the physical memory), 3 numerical failure or out of memory, 130/143 interrupted
-(SIGINT/SIGTERM).
+(0: the physical memory), 3 numerical failure or out of memory, 4 an output file cannot
+be written (disk full, I/O error), 130/143 interrupted (SIGINT/SIGTERM).
 Outputs (in output.directory): summary.json, convergence.csv (study.mode = convergence),
 solution.pvd + solution-NNNN.vtu (study.mode = single).
 )";
@@ -111,7 +111,12 @@ int main(int argc, char **argv)
       if (args[i] == "--set")
         overrides.push_back(args[++i]);
       else if (args[i] == "--output")
+      {
         output = args[++i];
+        if (output.empty())
+          throw InputError("--output: invalid value ''; expected the path of a directory "
+                           "(not empty)");
+      }
       else
         throw InputError("unknown option '" + args[i] + "'; expected --output DIR or --set "
                          "section.key=value");
@@ -144,6 +149,11 @@ int main(int argc, char **argv)
   {
     std::cerr << "anisodwr: input error: " << e.what() << std::endl;
     return exit_input_error;
+  }
+  catch (const OutputError &e)
+  {
+    std::cerr << "anisodwr: output error: " << e.what() << std::endl;
+    return exit_output_error;
   }
   catch (const NumericalError &e)
   {

@@ -48,10 +48,36 @@ if [ "$(wc -l <<<"$out")" != 1 ]; then echo "FAIL: stderr is not one line: $out"
 
 # a tiny limit: nothing started, summary.json and the loops.csv header written
 d=$tmp/tiny
-expect 2 "stopped: loop 1: memory estimate [0-9]* MB exceeds adaptivity.max_memory_mb = 1 MB" -- \
+expect 2 "stopped: loop 1: memory estimate [0-9]* MB (predicted before the mesh is built: 1 coarse cells x 4^2 = 16 cells) exceeds adaptivity.max_memory_mb = 1 MB" -- \
   run "$cfg" --output "$d" --set adaptivity.max_memory_mb=1
 check "dwr: stopped before loop 1" "$d" '
 assert d["status"] == "stopped" and d["loops"] == [] and rows == [], (d["status"], rows)'
+
+# an initial mesh far beyond the limit (4^14 cells of Q2) is refused before it is built:
+# exit 2 within 2 s (beyond the program's start-up, timed by `anisodwr defaults`, which
+# on a loaded machine itself takes seconds), peak resident memory below 500 MB,
+# summary.json "stopped"
+d=$tmp/huge
+if python3 - "$bin" "$src/config/moving_hump.json" "$d" <<'PY'; then echo "ok: predicted mesh refused early"; else echo "FAIL: predicted mesh"; fail=1; fi
+import json, resource, subprocess, sys, time
+bin_, cfg, d = sys.argv[1:4]
+limit = lambda: resource.setrlimit(resource.RLIMIT_AS, (4_000_000 * 1024,) * 2)
+t = time.time()
+subprocess.run([bin_, "defaults"], capture_output=True, check=True)
+startup = time.time() - t
+t = time.time()
+p = subprocess.run([bin_, "run", cfg, "--output", d, "--set", "discretization.initial_refinements=14",
+                    "--set", "adaptivity.max_memory_mb=2000"], capture_output=True, text=True,
+                   preexec_fn=limit, timeout=60)
+wall = time.time() - t
+rss = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+print(f"exit {p.returncode}, {wall:.2f} s (start-up {startup:.2f} s), {rss:.0f} MB: {p.stderr.strip()}")
+assert p.returncode == 2 and wall - startup < 2 and rss < 500
+assert p.stderr.startswith("anisodwr: stopped: loop 1: memory estimate ")
+assert "(predicted before the mesh is built: 1 coarse cells x 4^14 = 268435456 cells) exceeds adaptivity.max_memory_mb = 2000 MB" in p.stderr
+assert p.stderr.count("\n") == 1
+assert json.load(open(d + "/summary.json"))["status"] == "stopped"
+PY
 
 # single run and convergence study: before the run / the level
 d=$tmp/single

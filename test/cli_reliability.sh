@@ -20,6 +20,22 @@ expect 2 "'nan,0.5' in key 'goal.locations'" -- run "$cfg" --output "$(o)" "${pt
 expect 2 "'1e+06' for key 'goal.radius'" -- run "$cfg" --output "$(o)" --set goal.radius=1e6
 expect 0 "results:" -- run "$cfg" --output "$(o)" "${pt[@]}" --set goal.locations="0.3,0.3; 1,1"
 
+# goals too small for the mesh never give a silent J = 0: a mollifier the cells do not
+# resolve and a thin rectangle on cells that are not axis-parallel are refused with the
+# smallest size accepted there; a thin rectangle on axis-parallel cells is integrated
+# exactly (J as over a strip 100 times wider, the run not stopped by the tolerance)
+expect 2 "^anisodwr: input error: --set: invalid value '1e-20' for key 'goal.radius': the weight of goal point_1 integrates to 0 instead of 1 on the mesh of loop 1 .*the smallest radius (in steps of 2) accepted there is [0-9.e+-]*$" -- run "$cfg" --output "$(o)" "${pt[@]}" --set goal.locations=0.5,0.5 --set goal.radius=1e-20
+expect 2 "^anisodwr: input error: --set: invalid value '1.5,0.5,1.501,1.5' in key 'goal.locations': the weight of goal mean_1 integrates to 0.98[0-9]* instead of 1 .*accepted there is 0.008 x 1$" -- run "$hemker" --output "$(o)" "${mean[@]}" --set goal.reference= --set goal.locations=1.5,0.5,1.501,1.5
+strip=(run "$hemker" --set goal.kind=mean --set goal.reference= --set adaptivity.tolerance=1e-6)
+expect 0 "stopped: max loops" -- "${strip[@]}" --output "$tmp/strip" --set adaptivity.loops=2 --set goal.locations=4,0.5,4.001,1.5
+expect 0 "results:" -- "${strip[@]}" --output "$tmp/strip_wide" --set adaptivity.loops=1 --set goal.locations=4,0.5,4.1,1.5
+if python3 - "$tmp/strip" "$tmp/strip_wide" <<'PY'; then echo "ok: thin strip integrated exactly"; else echo "FAIL: thin strip"; fail=1; fi
+import json, sys
+J = [json.load(open(d + "/summary.json"))["loops"][0]["goals"]["mean_1"]["J_h"] for d in sys.argv[1:]]
+print(J)
+assert abs(J[0]) > 0.1 and abs(J[0] - J[1]) < 1e-3 * abs(J[1])
+PY
+
 # goal.reference: the error columns against given values, marked in summary.json
 expect 2 "invalid value '2.6' for key 'goal.reference'; expected 2 comma-separated values" -- run "$hemker" --output "$(o)" --set goal.reference=2.6
 expect 2 "goal.reference'; the uncertainty of goal u_xe1_I must be >= 0" -- run "$hemker" --output "$(o)" --set goal.reference="2.6+--1, 1e-3"
@@ -80,6 +96,89 @@ expect 2 "input error: --set: invalid value '1,2,3' for key 'goal.weights'" -- r
 expect 2 "key 'goal.locations' is empty" -- run "$cfg" --output "$(o)" --set goal.kind=point
 printf '{"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "0.5"}}' >"$tmp/loc.json"
 expect 2 "loc.json: invalid value '0.5' in key 'goal.locations'" -- run "$tmp/loc.json" --output "$(o)"
+
+# numbers that underflow double precision: one line naming source and key, exit 2
+expect 2 "^anisodwr: input error: --set: invalid value '1e-320' for key 'scene.epsilon': it underflows double precision; expected 0 or a normal number of magnitude >= 2.2e-308$" -- run "$cfg" --output "$(o)" --set scene.epsilon=1e-320
+printf '{"scene": {"epsilon": 4.9e-324}}' >"$tmp/subnormal.json"
+expect 2 "^anisodwr: input error: $tmp/subnormal.json: invalid value '4.9e-324' for key 'scene.epsilon': it underflows double precision" -- run "$tmp/subnormal.json" --output "$(o)"
+expect 2 "^anisodwr: input error: --set: invalid value '1e-400' for key 'adaptivity.tolerance': it underflows" -- run "$cfg" --output "$(o)" --set adaptivity.tolerance=1e-400
+expect 2 "^anisodwr: input error: --set: invalid value '0.5,1e-320' in key 'goal.locations': '1e-320' underflows double precision" -- run "$cfg" --output "$(o)" --set goal.kind=point --set goal.locations=0.5,1e-320
+
+# messages: a NUL character in a text value, empty sections (accepted, or an unknown
+# name), bounded ranges printed as they are
+printf '{"scene": {"variant": "a\\u0000b"}}' >"$tmp/nul.json"
+expect 2 "^anisodwr: input error: $tmp/nul.json: invalid value for key 'scene.variant': it contains a NUL character" -- run "$tmp/nul.json" --output "$(o)"
+printf '{"study": {"mode": "single"}, "goal": {}, "output": {"vtu_every": 0, "progress": false}}' >"$tmp/empty_section.json"
+expect 0 "results:" -- run "$tmp/empty_section.json" --output "$(o)"
+printf '{"scenery": {}}' >"$tmp/empty_unknown.json"
+expect 2 "empty_unknown.json: unknown section 'scenery'" -- run "$tmp/empty_unknown.json" --output "$(o)"
+expect 2 "^anisodwr: input error: --set: invalid value '-0.01' for key 'adaptivity.kappa'; expected a fraction in \\[0, 1\\]" -- run "$cfg" --output "$(o)" --set adaptivity.kappa=-0.01
+expect 2 "^anisodwr: input error: --set: invalid value '30' for key 'solver.ilu_fill'; expected a number with 0 <= v <= 10" -- run "$cfg" --output "$(o)" --set solver.ilu_fill=30
+expect 2 "^anisodwr: input error: --set: invalid value '-1' for key 'adaptivity.tolerance'; expected a number >= 0 (" -- run "$cfg" --output "$(o)" --set adaptivity.tolerance=-1
+
+# solver combinations the slab solvers refuse: exit 2 before anything is written (a stale
+# summary.json in the output directory stays, no lock file is made); unused with
+# solver.type = direct
+d=$tmp/untouched
+mkdir -p "$d"
+echo stale >"$d/summary.json"
+for type in iterative auto; do
+  expect 2 "^anisodwr: input error: --set: invalid combination solver.type = $type, solver.krylov = bicgstab, solver.inner_iterations = 5: .*expected solver.krylov = gmres or fgmres" -- run "$cfg" --output "$d" --set solver.type=$type --set solver.krylov=bicgstab --set solver.inner_iterations=5
+done
+printf '{"solver": {"krylov": "bicgstab", "inner_iterations": 3}}' >"$tmp/combination.json"
+expect 2 "^anisodwr: input error: $tmp/combination.json and --set: invalid combination solver.type = iterative" -- run "$tmp/combination.json" --output "$d" --set solver.type=iterative
+expect 0 "results:" -- run "$cfg" --output "$(o)" --set adaptivity.loops=1 --set solver.type=direct --set solver.krylov=bicgstab --set solver.inner_iterations=5
+# an empty output directory, from --output, a file or --set (run in an empty directory:
+# the config's own output.directory must not appear there)
+printf '{"output": {"directory": ""}}' >"$tmp/nodir.json"
+mkdir -p "$tmp/cwd"
+cd "$tmp/cwd"
+expect 2 "^anisodwr: input error: --output: invalid value ''; expected the path of a directory" -- run "$cfg" --output ""
+expect 2 "^anisodwr: input error: $tmp/nodir.json: invalid value '' for key 'output.directory'; expected the path of a directory" -- run "$tmp/nodir.json"
+expect 2 "^anisodwr: input error: --set: invalid value '' for key 'output.directory'" -- run "$cfg" --set output.directory=
+cd - >/dev/null
+if [ "$(cat "$d/summary.json")" != stale ] || [ -e "$d/.anisodwr.lock" ] || [ -n "$(ls -A "$tmp/cwd")" ]; then
+  echo "FAIL: a refused config touched an output directory: $(ls -A "$d" "$tmp/cwd")"
+  fail=1
+else
+  echo "ok: refused configs wrote nothing"
+fi
+
+# a full disk (a 24 kB tmpfs; needs root): exit 4, one line naming the file and the
+# reason; every file is complete (summary.json parses, table rows whole, loops.tex
+# closed) or absent, and no .tmp file stays
+full=$tmp/full
+mkdir -p "$full"
+if [ "$(id -u)" = 0 ] && mount -t tmpfs -o size=24k tmpfs "$full" 2>/dev/null; then
+  out=$(timeout 60 "$bin" run "$cfg" --output "$full/out" --set adaptivity.loops=3 2>&1 >/dev/null)
+  rc=$?
+  if [ "$rc" = 4 ] && [ "$(wc -l <<<"$out")" = 1 ] &&
+    grep -q "^anisodwr: output error: $full/out/[^ ]*: .*No space left on device$" <<<"$out" &&
+    python3 - "$full/out" <<'PY'; then
+import csv, json, os, sys
+d = sys.argv[1]
+names = os.listdir(d)
+assert not [n for n in names if n.endswith(".tmp")], names
+if "summary.json" in names:
+    json.load(open(os.path.join(d, "summary.json")))
+for n in names:
+    if n.endswith(".csv"):
+        text = open(os.path.join(d, n)).read()
+        assert text == "" or text.endswith("\n"), n
+        rows = list(csv.reader(text.splitlines()))
+        assert all(len(r) == len(rows[0]) for r in rows), n
+if "loops.tex" in names:
+    assert open(os.path.join(d, "loops.tex")).read().endswith("\\end{tabular}\n")
+PY
+    echo "ok: disk full -> 4: $out"
+  else
+    echo "FAIL: disk full -> exit $rc: $out; files: $(ls -la "$full/out")"
+    fail=1
+  fi
+  umount "$full"
+else
+  echo "skipped: disk full (mounting a tmpfs needs root)"
+fi
 
 # a failed direct solve: one line on stderr, the full text JSON-escaped in summary.json
 out=$(timeout 20 "$bin" run "$cfg" --output "$tmp/solve" --set adaptivity.loops=1 --set discretization.delta0=1e308 --set discretization.supg_tau_factor=0 --set adaptivity.time_indicator=average 2>&1 >/dev/null)

@@ -32,6 +32,23 @@ for k in $reals; do
   for v in -1 abc nan inf 1e999 '' 1,2; do check "$k" -- "$cfg" --set "$k=$v"; done
 done
 for k in scene.epsilon scene.end_time; do check "$k" -- "$cfg" --set "$k=0"; done
+# numbers that underflow double precision: subnormal (1e-320, 4.9e-324) or rounded to 0
+for k in $reals; do
+  for v in 1e-320 4.9e-324 1e-400; do
+    check "for key '$k': it underflows double precision" -- "$cfg" --set "$k=$v"
+  done
+done
+for v in '0.5,1e-320' '4.9e-324,0.5'; do
+  check "in key 'goal.locations': " -- "$cfg" --set goal.kind=point --set "goal.locations=$v"
+done
+check "in key 'goal.weights': '1e-400' underflows" -- "$cfg" --set goal.weights=1e-400
+# bounded ranges and combinations of solver keys the slab solvers refuse
+for v in -0.01 1.5; do check "'adaptivity.kappa'; expected a fraction in [0, 1]" -- "$cfg" --set "adaptivity.kappa=$v"; done
+for v in 10.5 30 1e300; do check "'solver.ilu_fill'; expected a number with 0 <= v <= 10" -- "$cfg" --set "solver.ilu_fill=$v"; done
+for type in iterative auto; do
+  check "invalid combination solver.type = $type, solver.krylov = bicgstab, solver.inner_iterations = 5" \
+    -- "$cfg" --set solver.type=$type --set solver.krylov=bicgstab --set solver.inner_iterations=5
+done
 for k in adaptivity.theta_h adaptivity.theta_tau adaptivity.theta_coarsen; do
   check "$k" -- "$cfg" --set "$k=1.01"
 done
@@ -86,6 +103,19 @@ true
 {"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "9,9"}}
 {"a": {"b": {"c": {}}}}
 {"scene": {"epsilon": 1e-6}} trailing
+{"scene": {"epsilon": 1e-320}}
+{"scene": {"end_time": 4.9e-324}}
+{"discretization": {"delta0": 1e-400}}
+{"study": {"mode": "dwr"}, "goal": {"kind": "point", "locations": "0.5, 1e-320"}}
+{"scene": {"variant": "a\u0000b"}}
+{"scene\u0000x": {"name": "heat"}}
+{"scene": {"na\u0000me": "heat"}}
+{"scenery": {}}
+{"goal": ""}
+{"goal": []}
+{"adaptivity": {"kappa": -0.01}}
+{"solver": {"ilu_fill": 30}}
+{"solver": {"type": "auto", "krylov": "bicgstab", "inner_iterations": 5}}
 CORPUS
 python3 -c "print('{\"a\": ' * 5000)" >"$tmp/deep.json"
 check "deep.json" -- "$tmp/deep.json"

@@ -654,8 +654,25 @@ TEST(InnerIterations, KeysDefaultAndBicgstabRejected)
   const Parameters prm = Parameters::from_overrides({});
   EXPECT_EQ(prm.solver.iterative.inner_iterations, 0u);
   EXPECT_DOUBLE_EQ(prm.solver.iterative.inner_tolerance, 1e-2);
-  auto o = slab_solver_options(Parameters::from_overrides(
-      {"solver.type=iterative", "solver.krylov=bicgstab", "solver.inner_iterations=10"}));
+  // refused when the config is read, naming the keys
+  for (const char *type : {"solver.type=iterative", "solver.type=auto"})
+    try
+    {
+      Parameters::from_overrides({type, "solver.krylov=bicgstab", "solver.inner_iterations=10"});
+      ADD_FAILURE() << "bicgstab with inner iterations was accepted by the config (" << type
+                    << ")";
+    }
+    catch (const InputError &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("solver.inner_iterations = 10"), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("solver.krylov = bicgstab"), std::string::npos)
+          << e.what();
+    }
+  // and by the slab solver, for options that do not come from a config
+  auto o = slab_solver_options(Parameters::from_overrides({"solver.type=iterative"}));
+  o.iterative.krylov = Krylov::bicgstab;
+  o.iterative.inner_iterations = 10;
   SlabProblem s("moving_hump", "", 1, 1e-4);
   const TemporalBasis basis(1);
   SlabOperator<2> it(*s.space, basis, o);

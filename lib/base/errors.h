@@ -22,6 +22,15 @@ public:
   using InputError::InputError;
 };
 
+/// An output file that cannot be written (disk full, I/O error) after the output
+/// directory was taken: the input was fine. The message names the file and the
+/// system's reason (strerror). The program exits with code 4.
+class OutputError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
 /// Numerical failure (solver failure, NaN/Inf). The program exits with code 3.
 /// The message names the DWR loop / study level and the slab.
 /// what() is one line; details() holds the full text of a library error (written to
@@ -57,4 +66,5 @@ inline std::string failure_details(const std::exception &e)
 constexpr int exit_ok = 0;
 constexpr int exit_input_error = 2;
 constexpr int exit_numerical_error = 3;
+constexpr int exit_output_error = 4;
 } // namespace anisodwr

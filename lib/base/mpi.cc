@@ -87,7 +87,7 @@ void on_output_rank(const std::function<void()> &write)
   }
   MPI_Bcast(&failed, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (failed)
-    throw InputError("writing the output failed on rank 0");
+    throw OutputError("writing the output failed on rank 0");
 }
 
 double mpi_max(double x)

@@ -20,7 +20,7 @@ inline bool writes_output() { return mpi_rank() == 0; }
 /// Initializes MPI (MPI_Init; MPI_Finalize at exit) unless it already is.
 void ensure_mpi();
 /// Runs `write` on the output rank only; every rank then throws what it threw (an
-/// InputError on the other ranks), so that all ranks stop together. Collective.
+/// OutputError on the other ranks), so that all ranks stop together. Collective.
 void on_output_rank(const std::function<void()> &write);
 /// The largest x over all ranks (x on one rank). Collective: decisions taken from
 /// measured times or memory must be the same on every rank.

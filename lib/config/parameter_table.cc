@@ -1,5 +1,7 @@
 #include "config/parameter_table.h"
 
+#include "base/parse_number.h"
+
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -20,7 +22,11 @@ template <class T, class Ref> Binding bind(Ref ref)
   {
     T &x = ref(p);
     if constexpr (std::is_same_v<T, double>)
-      x = std::stod(v);
+    {
+      if (parse_double(v, x) != NumberStatus::ok)
+        throw std::logic_error("'" + v +
+                               "' is not a finite double (checked by the reader)");
+    }
     else if constexpr (std::is_same_v<T, unsigned int>)
       x = std::stoul(v);
     else if constexpr (std::is_same_v<T, bool>)
@@ -87,6 +93,10 @@ std::shared_ptr<PatternBase> integer(int lo, int hi)
 std::shared_ptr<PatternBase> real(double lo)
 {
   return std::make_shared<P::Double>(lo);
+}
+std::shared_ptr<PatternBase> real(double lo, double hi)
+{
+  return std::make_shared<P::Double>(lo, hi);
 }
 const std::shared_ptr<PatternBase> boolean = std::make_shared<P::Bool>();
 const std::shared_ptr<PatternBase> text = std::make_shared<P::Anything>();
@@ -226,9 +236,11 @@ std::vector<Entry> solver_entries()
        "GMRES restart length (Krylov vectors kept)."},
       {"solver", "max_iterations", "500", k(&I::max_iterations), integer(1, 1000000),
        "Krylov iterations per slab solve before it counts as failed."},
-      {"solver", "ilu_fill", "2", k(&I::ilu_fill), real(0.),
+      {"solver", "ilu_fill", "2", k(&I::ilu_fill), real(0., 10.),
        "ILU(k) level k (riluk, block_ilu, kronecker; rounded) or ILUT fill ratio "
-       "(ilut, >= 1)."},
+       "(ilut, >= 1); at most 10 (for ILU(k) Ifpack2 reserves 2^k times the entries of "
+       "each matrix row in advance).",
+       "a number with 0 <= v <= 10"},
       {"solver", "spatial_preconditioner", "ilu", k(&I::spatial_preconditioner), by_name,
        "Inner solver of the kronecker and kronecker_presb preconditioners for each "
        "temporal mode's spatial matrix (lambda M + A; the 2n x 2n real form or the PRESB "
@@ -340,11 +352,11 @@ std::vector<Entry> adaptivity_entries()
        "sum to theta_h of the total (Doerfler; few cells where the error is "
        "concentrated). Cells, pairs or directions as adaptivity.marking ranks them; "
        "the coarsening and theta_tau stay by count."},
-      {"adaptivity", "kappa", "0.75", m(&S::kappa), real(0.),
+      {"adaptivity", "kappa", "0.75", m(&S::kappa), real(0., 1.),
        "marking = cell: a marked cell is cut in direction i iff |eta_h,i^K| >= kappa * "
        "its largest directional indicator, in [0,1] (1: the dominant direction only; 0: "
        "isotropic).",
-       "", Check::fraction},
+       "a fraction in [0, 1]", Check::fraction},
       {"adaptivity", "loops", "6", m(&S::loops), integer(1, 1000),
        "Maximum number of DWR loops."},
       {"adaptivity", "theta_h", "0.25", m(&S::theta_h), real(0.),
@@ -466,6 +478,18 @@ std::vector<Entry> make_entries()
     {
       if (!e.pattern)
         e.pattern = e.member.choices;
+      // a real bounded below only: "a number >= lo", not "lo <= v <= MAX_DOUBLE"
+      const std::string text = e.pattern->description(PatternBase::OutputStyle::Text),
+                        unbounded = " <= v <= MAX_DOUBLE", head = "such that ";
+      if (e.range.empty() && e.kind() == Kind::real && text.size() > unbounded.size() &&
+          text.compare(text.size() - unbounded.size(), unbounded.size(), unbounded) ==
+              0 &&
+          text.find(head) != std::string::npos)
+      {
+        const auto from = text.find(head) + head.size();
+        e.range =
+            "a number >= " + text.substr(from, text.size() - unbounded.size() - from);
+      }
       all.push_back(std::move(e));
     }
   return all;

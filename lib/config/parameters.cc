@@ -2,6 +2,7 @@
 
 #include "base/errors.h"
 #include "base/json_escape.h"
+#include "base/parse_number.h"
 #include "config/parameter_table.h"
 
 #include <boost/property_tree/json_parser.hpp>
@@ -16,6 +17,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
 namespace anisodwr
@@ -67,9 +69,15 @@ public:
       values[e.name()] = e.default_value;
   }
 
-  void set(const std::string &section, const std::string &key, const std::string &value,
-           const std::string &origin)
+  /// The key section.key of the table (InputError naming `origin` if there is none;
+  /// with section_only only the section is checked and nullptr returned).
+  static const Entry *find(const std::string &section, const std::string &key,
+                           const std::string &origin, bool section_only = false)
   {
+    if (section.find('\0') != std::string::npos || key.find('\0') != std::string::npos)
+      throw InputError(origin +
+                       ": a section or key name contains a NUL character "
+                       "(\\u0000); expected the names that anisodwr defaults prints");
     std::vector<std::string> sections, keys;
     const Entry *found = nullptr;
     for (const auto &e : entries())
@@ -86,13 +94,32 @@ public:
     if (keys.empty())
       throw InputError(origin + ": unknown section '" + section + "'" +
                        suggestion(section, sections));
-    if (!found)
+    if (!found && !section_only)
       throw InputError(origin + ": unknown key '" + section + "." + key + "'" +
                        suggestion(key, keys));
+    return found;
+  }
+
+  void set(const std::string &section, const std::string &key, const std::string &value,
+           const std::string &origin)
+  {
+    const Entry *found = find(section, key, origin);
+    const std::string name = section + "." + key;
+    if (value.find('\0') != std::string::npos)
+      throw InputError(origin + ": invalid value for key '" + name +
+                       "': it contains a NUL character (\\u0000); expected " +
+                       (found->kind() == Kind::text
+                            ? std::string("text without NUL characters")
+                            : found->expected()));
     if (!found->pattern->match(value))
-      throw InputError(origin + ": invalid value '" + value + "' for key '" + section +
-                       "." + key + "'; expected " + found->expected() + " (" +
-                       found->doc + ")");
+      throw InputError(origin + ": invalid value '" + value + "' for key '" + name +
+                       "'; expected " + found->expected() + " (" + found->doc + ")");
+    if (double v = 0; found->kind() == Kind::real)
+      if (const auto status = parse_double(value, v); status != NumberStatus::ok)
+        throw InputError(
+            origin + ": invalid value '" + value + "' for key '" + name + "': " +
+            (status == NumberStatus::underflow ? "it " + underflow_text()
+                                               : "expected " + found->expected()));
     values[section + "." + key] = value;
     origins[section + "." + key] = origin;
   }
@@ -102,7 +129,10 @@ public:
 
   /// The top level must be an object and the nesting at most max_depth deep (the JSON
   /// reader recurses once per level; without the limit deep input overflows the stack).
-  static void check_structure(const std::string &file, const std::string &text)
+  /// Returns the top-level keys (as written, escapes not decoded) whose value is an
+  /// object: the JSON reader does not tell {} from "" or [].
+  static std::set<std::string> check_structure(const std::string &file,
+                                               const std::string &text)
   {
     std::size_t start = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
     start = text.find_first_not_of(" \t\r\n", start);
@@ -116,8 +146,10 @@ public:
                                                                    "\r\n", start) -
                                                                    start)) +
                                   "'"));
+    std::set<std::string> objects;
     unsigned int depth = 0;
     bool in_string = false;
+    std::size_t string_start = 0;
     for (std::size_t i = start; i < text.size(); ++i)
     {
       const char c = text[i];
@@ -126,10 +158,22 @@ public:
         if (c == '\\')
           ++i;
         else if (c == '"')
+        {
           in_string = false;
+          const auto colon = text.find_first_not_of(" \t\r\n", i + 1);
+          if (depth == 1 && colon != std::string::npos && text[colon] == ':')
+          {
+            const auto value = text.find_first_not_of(" \t\r\n", colon + 1);
+            if (value != std::string::npos && text[value] == '{')
+              objects.insert(text.substr(string_start, i - string_start));
+          }
+        }
       }
       else if (c == '"')
+      {
         in_string = true;
+        string_start = i + 1;
+      }
       else if (c == '[' || c == '{')
       {
         if (++depth > max_depth)
@@ -140,6 +184,7 @@ public:
       else if ((c == ']' || c == '}') && depth > 0)
         --depth;
     }
+    return objects;
   }
 
   void read_file(const std::string &file)
@@ -161,7 +206,7 @@ public:
     {
       throw InputError(file + ": cannot read the config file: " + std::strerror(errno));
     }
-    check_structure(file, text);
+    const std::set<std::string> objects = check_structure(file, text);
     boost::property_tree::ptree tree;
     try
     {
@@ -177,6 +222,11 @@ public:
     {
       if (!section.empty() && section[0] == '#')
         continue;
+      if (sub.empty() && objects.count(section))
+      {
+        find(section, "", file, true); // an empty section: only its name is checked
+        continue;
+      }
       if (sub.empty())
         throw InputError(file + ": top-level key '" + section +
                          "' must be a section object like {\"key\": value}");
@@ -216,6 +266,11 @@ public:
     for (const auto &e : entries())
       if (e.check == Check::bounded_positive)
         bounded_positive(e.name());
+    if (get("output.directory").empty())
+      throw InputError(origin("output.directory") +
+                       ": invalid value '' for key 'output.directory'; expected the path "
+                       "of a directory (not empty)");
+    check_solver_combination(p);
     for (const auto &[key, value] : values)
       p.sources[key] = origin(key);
     return p;
@@ -231,7 +286,48 @@ private:
   }
 
   std::string get(const std::string &k) const { return values.at(k); }
-  double real(const std::string &k) const { return std::stod(get(k)); }
+
+  /// Where the keys' values came from, for a message on their combination: the sources
+  /// other than the defaults, each once ("--set", "a.json and --set").
+  std::string origins_of(const std::vector<std::string> &keys) const
+  {
+    std::vector<std::string> seen;
+    std::string all;
+    for (const auto &k : keys)
+      if (const std::string o = origin(k);
+          o != "default" && std::find(seen.begin(), seen.end(), o) == seen.end())
+      {
+        seen.push_back(o);
+        all += (all.empty() ? "" : " and ") + o;
+      }
+    return all.empty() ? "default" : all;
+  }
+
+  /// Combinations of solver keys that the slab solvers refuse, refused here before
+  /// anything is written: an inner GMRES (solver.inner_iterations > 0) changes the
+  /// preconditioner between applications, which BiCGStab cannot take. Checked for
+  /// every solver.type that can solve by Krylov (iterative, auto).
+  void check_solver_combination(const Parameters &p) const
+  {
+    const IterativeOptions &it = p.solver.iterative;
+    if (it.inner_iterations == 0 || it.krylov != Krylov::bicgstab ||
+        p.solver.type == SolverType::direct || p.solver.type == SolverType::modes)
+      return;
+    throw InputError(
+        origins_of({"solver.krylov", "solver.inner_iterations", "solver.type"}) +
+        ": invalid combination solver.type = " + get("solver.type") +
+        ", solver.krylov = bicgstab, solver.inner_iterations = " +
+        get("solver.inner_iterations") +
+        ": inner GMRES iterations change the preconditioner between applications; "
+        "expected solver.krylov = gmres or fgmres (run as flexible GMRES), or "
+        "solver.inner_iterations = 0");
+  }
+  double real(const std::string &k) const
+  {
+    double v = 0;
+    parse_double(get(k), v); // checked in set()
+    return v;
+  }
   /// v <= 1 (Check::fraction)
   void fraction(const std::string &k) const
   {

@@ -1,8 +1,11 @@
 #include "goal/goal_input.h"
 
 #include "base/errors.h"
+#include "base/parse_number.h"
+#include "goal/goal.h"
 
 #include <cmath>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -39,19 +42,18 @@ std::vector<double> numbers(const std::string &s, const std::string &key, unsign
 {
   std::vector<double> v;
   for (const auto &x : split(s, ','))
-    try
-    {
-      std::size_t used = 0;
-      v.push_back(std::stod(x, &used));
-      if (used != x.size() || !std::isfinite(v.back()))
-        throw std::invalid_argument(x);
-    }
-    catch (const std::exception &)
-    {
+  {
+    double value = 0;
+    const NumberStatus status = parse_double(x, value);
+    if (status == NumberStatus::underflow)
+      throw InputError(source + ": invalid value '" + s + "' in key '" + key + "': '" +
+                       x + "' " + underflow_text());
+    if (status != NumberStatus::ok)
       throw InputError(source + ": invalid value '" + s + "' in key '" + key +
                        "'; expected " + std::to_string(n) +
                        " comma-separated finite numbers");
-    }
+    v.push_back(value);
+  }
   if (v.size() != n)
     throw InputError(source + ": invalid value '" + s + "' in key '" + key +
                      "'; expected " + std::to_string(n) +
@@ -161,5 +163,95 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
   }
   set_references(in, scene, goals);
   return goals;
+}
+
+namespace
+{
+/// The integral of the goal's weight function by its quadrature on the space's mesh:
+/// the sum of its goal vector (the shape functions sum to 1).
+double total_weight(const Space<2> &space, const GoalSpec &goal)
+{
+  Vector<double> j;
+  assemble_goal_vector(space, goal, j);
+  return std::accumulate(j.begin(), j.end(), 0.);
+}
+
+/// Whether the goal's weight integrates to its exact value (w: the integral).
+bool resolved(const Space<2> &space, const GoalSpec &goal, const Scene<2> &scene,
+              double &w)
+{
+  w = total_weight(space, goal);
+  const double s = goal.kind == GoalKind::point ? goal.radius : 0.;
+  if (s > 0 && !scene.contains_box(Point<2>(goal.center[0] - s, goal.center[1] - s),
+                                   Point<2>(goal.center[0] + s, goal.center[1] + s)))
+    return w > 0 && w <= 1 + goal_weight_tolerance(goal.kind); // leaves the domain
+  return std::abs(w - 1.) <= goal_weight_tolerance(goal.kind);
+}
+} // namespace
+
+void check_goal_weights(const Space<2> &space, const std::vector<GoalSpec> &goals,
+                        const GoalInput &in, const Scene<2> &scene)
+{
+  const auto box = scene.bounding_box();
+  const double diameter = box[0].distance(box[1]);
+  for (const GoalSpec &goal : goals)
+  {
+    GoalSpec g = unweighted(goal);
+    double w = 0, grown_w = 0;
+    if (resolved(space, g, scene, w))
+      continue;
+    const std::string integrates = "the weight of goal " + g.name + " integrates to " +
+                                   six_digits(w) + " instead of 1 on the mesh of loop 1";
+    // the smallest size accepted: the goal grown about its centre by factors of 2
+    if (g.kind == GoalKind::point)
+    {
+      std::string smallest = "no radius up to the domain's diameter is accepted there";
+      for (double s = 2. * g.radius; s <= diameter; s *= 2.)
+        if (g.radius = s; resolved(space, g, scene, grown_w))
+        {
+          smallest =
+              "the smallest radius (in steps of 2) accepted there is " + six_digits(s);
+          break;
+        }
+      throw InputError(in.radius_source + ": invalid value '" + six_digits(goal.radius) +
+                       "' for key 'goal.radius': " + integrates +
+                       " (the mollifier is too small for the cells); expected a radius "
+                       "whose mollifier the mesh resolves: " +
+                       smallest);
+    }
+    const double cx = 0.5 * (g.lower[0] + g.upper[0]),
+                 cy = 0.5 * (g.lower[1] + g.upper[1]);
+    double hx = 0.5 * (g.upper[0] - g.lower[0]), hy = 0.5 * (g.upper[1] - g.lower[1]);
+    std::string smallest =
+        "none of the larger rectangles about its centre (in steps of 2) "
+        "inside the domain is accepted there; refine the initial mesh "
+        "(discretization.initial_refinements)";
+    // the shorter side doubled first (a thin strip widened), then both
+    const auto grow = [&]()
+    {
+      const double x = hx, y = hy;
+      hx = x <= y ? 2. * x : x;
+      hy = y <= x ? 2. * y : y;
+    };
+    for (grow();
+         scene.contains_box(Point<2>(cx - hx, cy - hy), Point<2>(cx + hx, cy + hy));
+         grow())
+    {
+      g.lower = {cx - hx, cy - hy};
+      g.upper = {cx + hx, cy + hy};
+      if (resolved(space, g, scene, grown_w))
+      {
+        smallest =
+            "the smallest one about its centre (in steps of 2) accepted there is " +
+            six_digits(2. * hx) + " x " + six_digits(2. * hy);
+        break;
+      }
+    }
+    throw InputError(in.locations_source + ": invalid value '" + in.locations +
+                     "' in key 'goal.locations': " + integrates +
+                     " (the rectangle is too small for the cells it cuts, which are "
+                     "not axis-parallel); expected a rectangle the mesh resolves: " +
+                     smallest);
+  }
 }
 } // namespace anisodwr

@@ -114,7 +114,7 @@ void write_loops_latex(const std::string &path, const std::vector<LoopRow> &rows
 {
   if (!writes_output())
     return;
-  std::ofstream f(path);
+  std::ostringstream f;
   f << "% written by anisodwr; one row per DWR loop\n"
     << "\\begin{tabular}{rrrrcccccccr}\n\\hline\n"
     << "$\\ell$ & $N_{\\mathrm{space}}$ & $N_t$ & $N_{\\mathrm{tot}}$ & "
@@ -141,6 +141,7 @@ void write_loops_latex(const std::string &path, const std::vector<LoopRow> &rows
       << (std::isfinite(r.I_eff()) ? ie.str() : "--") << " & " << ar.str() << " \\\\\n";
   }
   f << "\\hline\n\\end{tabular}\n";
+  write_file_atomically_here(path, f.str());
 }
 
 std::string summary_json(const SummaryContext &context, const std::vector<LoopRow> &rows,

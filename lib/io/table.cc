@@ -20,19 +20,65 @@
 
 namespace anisodwr
 {
+namespace
+{
+/// Writes all of data to fd; false (errno set) if a write fails.
+bool write_all(int fd, const char *data, std::size_t size)
+{
+  while (size > 0)
+  {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+    {
+      if (n == 0)
+        errno = EIO;
+      return false;
+    }
+    data += n;
+    size -= std::size_t(n);
+  }
+  return true;
+}
+
+std::string reason(int err)
+{
+  return std::strerror(err);
+}
+} // namespace
+
 CsvTable::CsvTable(const std::string &path, const std::vector<std::string> &columns)
     : file(path), n_columns(columns.size())
 {
   on_output_rank(
       [&]()
       {
-        out.open(path);
-        if (!out)
-          throw InputError(path + ": cannot open for writing");
+        fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+        if (fd < 0)
+          throw OutputError(path + ": cannot open for writing: " + reason(errno));
+        std::string header;
         for (std::size_t c = 0; c < columns.size(); ++c)
-          out << (c ? "," : "") << columns[c];
-        out << "\n" << std::flush;
+          header += (c ? "," : "") + columns[c];
+        append(header + "\n");
       });
+}
+
+CsvTable::~CsvTable()
+{
+  if (fd >= 0)
+    ::close(fd);
+}
+
+void CsvTable::append(const std::string &text)
+{
+  const off_t before = ::lseek(fd, 0, SEEK_END);
+  if (before >= 0 && write_all(fd, text.data(), text.size()))
+    return;
+  const int err = errno;
+  if (before >= 0 && ::ftruncate(fd, before) == 0)
+    ::lseek(fd, before, SEEK_SET);
+  throw OutputError(file + ": cannot write: " + reason(err));
 }
 
 void CsvTable::add_row(const std::vector<double> &values)
@@ -43,15 +89,17 @@ void CsvTable::add_row(const std::vector<double> &values)
                            " columns");
   if (!writes_output())
     return;
-  out << std::setprecision(8);
+  std::ostringstream row;
+  row << std::setprecision(8);
   for (std::size_t c = 0; c < values.size(); ++c)
   {
     if (c)
-      out << ",";
+      row << ",";
     if (!std::isnan(values[c]))
-      out << values[c];
+      row << values[c];
   }
-  out << "\n" << std::flush;
+  row << "\n";
+  append(row.str());
 }
 
 std::string json_number(double v, int digits)
@@ -102,51 +150,25 @@ private:
 // What the signal handler writes (only changed while the signals are blocked).
 std::string interrupt_path, interrupt_tmp, interrupt_content;
 
-void write_all(int fd, const char *data, std::size_t size)
-{
-  while (size > 0)
-  {
-    const ssize_t n = ::write(fd, data, size);
-    if (n <= 0)
-      return;
-    data += n;
-    size -= std::size_t(n);
-  }
-}
-
 extern "C" void on_interrupt(int sig)
 {
-  // async-signal-safe calls only: open, write, close, rename, _exit
+  // async-signal-safe calls only: open, write, close, rename, unlink, _exit
   if (!interrupt_path.empty())
   {
     const int fd = ::open(interrupt_tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0)
     {
-      write_all(fd, interrupt_content.data(), interrupt_content.size());
-      ::close(fd);
-      ::rename(interrupt_tmp.c_str(), interrupt_path.c_str());
+      const bool written =
+          write_all(fd, interrupt_content.data(), interrupt_content.size());
+      if (::close(fd) == 0 && written)
+        ::rename(interrupt_tmp.c_str(), interrupt_path.c_str());
+      else
+        ::unlink(interrupt_tmp.c_str()); // summary.json keeps its last version
     }
   }
   const char msg[] = "anisodwr: interrupted; summary.json has status \"interrupted\"\n";
   write_all(2, msg, sizeof msg - 1);
   _exit(128 + sig);
-}
-
-void write_file_on_this_rank(const std::string &path, const std::string &content)
-{
-  const SignalBlock block;
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f << content;
-    f.flush();
-    if (!f)
-      throw InputError(tmp + ": cannot write");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec)
-    throw InputError(path + ": cannot replace it by " + tmp + ": " + ec.message());
 }
 
 void lock_output_directory_on_this_rank(const std::string &dir)
@@ -194,9 +216,28 @@ void lock_output_directory_on_this_rank(const std::string &dir)
 }
 } // namespace
 
+void write_file_atomically_here(const std::string &path, const std::string &content)
+{
+  const SignalBlock block;
+  const std::string tmp = path + ".tmp";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0)
+    throw OutputError(path + ": cannot create " + tmp + ": " + reason(errno));
+  bool written = write_all(fd, content.data(), content.size());
+  int err = errno;
+  if (::close(fd) != 0 && written)
+    written = false, err = errno;
+  if (written && ::rename(tmp.c_str(), path.c_str()) == 0)
+    return;
+  if (written)
+    err = errno;
+  ::unlink(tmp.c_str());
+  throw OutputError(path + ": cannot write (" + tmp + "): " + reason(err));
+}
+
 void write_file_atomically(const std::string &path, const std::string &content)
 {
-  on_output_rank([&]() { write_file_on_this_rank(path, content); });
+  on_output_rank([&]() { write_file_atomically_here(path, content); });
 }
 
 void lock_output_directory(const std::string &dir)

@@ -1,6 +1,7 @@
 #include "io/vtu.h"
 
 #include "base/mpi.h"
+#include "io/table.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/numerics/data_out.h>
@@ -24,7 +25,7 @@ void write_cells_csv(const Space<dim> &space, const Vector<double> &u,
                      const CellData &cell_data, const std::string &path)
 {
   static_assert(dim == 2, "cells.csv is written for 2D meshes");
-  std::ofstream f(path);
+  std::ostringstream f;
   f << std::setprecision(10) << "x0,y0,x1,y1,x2,y2,x3,y3,u0,u1,u2,u3";
   for (const auto &entry : cell_data)
     f << "," << entry.first;
@@ -42,6 +43,7 @@ void write_cells_csv(const Space<dim> &space, const Vector<double> &u,
     f << "\n";
     ++c;
   }
+  write_file_atomically_here(path, f.str());
 }
 } // namespace
 
@@ -73,8 +75,9 @@ std::string write_vtu(const Space<dim> &space, const Vector<double> &u, double t
   out.build_patches(space.mapping(), space.degree());
   DataOutBase::VtkFlags flags(t, index);
   out.set_flags(flags);
-  std::ofstream f(dir + "/" + file.str());
+  std::ostringstream f;
   out.write_vtu(f);
+  write_file_atomically_here(dir + "/" + file.str(), f.str());
   write_cells_csv(space, u, cell_data,
                   dir + "/" + file.str().substr(0, file.str().size() - 4) + ".cells.csv");
   return file.str();
@@ -85,8 +88,9 @@ void write_pvd(const std::string &dir, const std::string &name,
 {
   if (!writes_output())
     return;
-  std::ofstream f(dir + "/" + name + ".pvd");
+  std::ostringstream f;
   DataOutBase::write_pvd_record(f, records);
+  write_file_atomically_here(dir + "/" + name + ".pvd", f.str());
 }
 
 template std::string write_vtu<2>(const Space<2> &, const Vector<double> &, double,

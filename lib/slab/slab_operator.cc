@@ -8,7 +8,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -182,8 +185,15 @@ void write_matrix_market(const SparseMatrix<double> &A, const std::string &path)
         for (types::global_dof_index i = 0; i < A.m(); ++i)
           for (auto e = A.begin(i); e != A.end(i); ++e)
             f << i + 1 << " " << e->column() + 1 << " " << e->value() << "\n";
+        f.flush();
         if (!f)
-          throw InputError(path + ": cannot write the slab matrix");
+        {
+          const int err = errno;
+          f.close();
+          std::remove(path.c_str()); // absent rather than partial
+          throw OutputError(path +
+                            ": cannot write the slab matrix: " + std::strerror(err));
+        }
       });
 }
 

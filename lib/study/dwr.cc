@@ -211,17 +211,13 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
       q(prm.adaptivity.adjoint_degree ? prm.adaptivity.adjoint_degree
                                       : 2 * prm.discretization.p)
 {
-  for (std::size_t g = 0; g < goals.size(); ++g)
-    J_exact[g] = scene->exact() ? exact_goal(*scene, goals[g]) : goals[g].reference;
   scene->make_coarse_grid(tria);
-  tria.refine_global(prm.discretization.initial_refinements);
   mesh = TimeMesh::uniform(scene->end_time, prm.discretization.n_slabs);
   table = std::make_unique<CsvTable>(prm.output.directory + "/loops.csv",
                                      loop_columns(goal_names(goals)));
   probe_table = std::make_unique<CsvTable>(prm.output.directory + "/probes.csv",
                                            probe_columns(goals));
   probe_spec = scene->probes();
-  base_mb = mpi_max(resident_memory_mb());
   mem_limit = memory_limit(prm);
   wall.restart();
 }
@@ -231,18 +227,18 @@ void AdaptiveLoop::run()
   summary("running", "", 0.);
   for (const std::string &w : dwr_warnings(prm))
     std::cerr << "anisodwr: warning: " << w << std::endl;
-  std::cout << "anisodwr dwr: scene " << scene->name() << ", cG(" << prm.discretization.p
-            << ")-dG(" << prm.discretization.r << "), adjoint cG(" << q << "), "
-            << name(prm.adaptivity.mode) << ", goals:";
-  for (std::size_t g = 0; g < goals.size(); ++g)
-    std::cout << " " << goals[g].name << (has_exact ? " = " + json_number(J_exact[g], 12) : "")
-              << (std::isnan(goals[g].reference)
-                      ? ""
-                      : " +- " + json_number(goals[g].reference_uncertainty, 12) + " (reference)");
-  std::cout << "\n";
-  print_loop_header(std::cout);
   try
   {
+    // the initial mesh unless its predicted memory exceeds the limit (checked first:
+    // the exact goal values take up to a second each)
+    check_initial_mesh_memory(prm, *scene, tria.n_active_cells(), q, goals.size(),
+                              mem_limit);
+    for (std::size_t g = 0; g < goals.size(); ++g)
+      J_exact[g] = scene->exact() ? exact_goal(*scene, goals[g]) : goals[g].reference;
+    print_run_line(std::cout, prm, *scene, q, goals, J_exact, has_exact);
+    print_loop_header(std::cout);
+    tria.refine_global(prm.discretization.initial_refinements);
+    base_mb = mpi_max(resident_memory_mb());
     for (unsigned int loop = 1; loop <= prm.adaptivity.loops; ++loop)
     {
       LoopRow row;
@@ -291,6 +287,8 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   const auto primal_space = make_space(prm, *scene, tria, prm.discretization.p);
   const auto adjoint_space = make_adjoint_space(prm, *scene, tria, q);
   const Space<2> &primal = *primal_space, &adjoint = *adjoint_space;
+  if (row.loop == 1)
+    check_goal_weights(primal, goals, goal_input(prm), *scene);
   row.n_space = primal.n_dofs();
   row.n_t = mesh.n_slabs();
   row.n_tot = row.n_space * row.n_t * basis.n_dofs();

@@ -1,8 +1,11 @@
 #include "study/loop_outputs.h"
 
+#include "io/table.h"
 #include "io/vtu.h"
 
 #include <deal.II/base/utilities.h>
+
+#include <cmath>
 
 namespace anisodwr
 {
@@ -44,4 +47,19 @@ void write_loop_outputs(const Parameters &prm, const Scene<2> &scene,
   write_pvd(prm.output.directory, "loops", vtu_records);
 }
 
+
+void print_run_line(std::ostream &out, const Parameters &prm, const Scene<2> &scene,
+                    unsigned int q, const std::vector<GoalSpec> &goals,
+                    const std::vector<double> &J_exact, bool has_exact)
+{
+  out << "anisodwr dwr: scene " << scene.name() << ", cG(" << prm.discretization.p
+      << ")-dG(" << prm.discretization.r << "), adjoint cG(" << q << "), "
+      << name(prm.adaptivity.mode) << ", goals:";
+  for (std::size_t g = 0; g < goals.size(); ++g)
+    out << " " << goals[g].name << (has_exact ? " = " + json_number(J_exact[g], 12) : "")
+        << (std::isnan(goals[g].reference)
+                ? ""
+                : " +- " + json_number(goals[g].reference_uncertainty, 12) + " (reference)");
+  out << "\n";
+}
 } // namespace anisodwr

@@ -9,6 +9,7 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,4 +25,11 @@ void write_loop_outputs(const Parameters &prm, const Scene<2> &scene,
                         const dealii::Vector<double> &uT, const Indicators<2> &ind,
                         const std::vector<double> &ar_cell,
                         std::vector<std::pair<double, std::string>> &vtu_records);
+
+/// The first line of a DWR run on `out`: scene, degrees (adjoint degree q), adaptivity
+/// mode and the goals, each with its exact value (has_exact; J_exact per goal) and its
+/// reference uncertainty if goal.reference gave one.
+void print_run_line(std::ostream &out, const Parameters &prm, const Scene<2> &scene,
+                    unsigned int q, const std::vector<GoalSpec> &goals,
+                    const std::vector<double> &J_exact, bool has_exact);
 } // namespace anisodwr

@@ -2,12 +2,14 @@
 #include "study/options.h"
 
 #include "base/errors.h"
+#include "base/mpi.h"
 #include "io/table.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <sstream>
 
 namespace anisodwr
 {
@@ -142,22 +144,25 @@ SlabSystemSize slab_system(const Space<2> &space, const SlabSolverOptions &optio
   return s;
 }
 
-MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
-                         const Space<2> *adjoint, unsigned int n_slabs, double base_mb,
-                         unsigned int n_goals)
+namespace
+{
+/// The model for given slab systems (adjoint.n_space = 0: primal only).
+MemoryModel memory_model(const Parameters &prm, const SlabSystemSize &primal,
+                         const SlabSystemSize &adjoint, bool time_dependent,
+                         unsigned int n_slabs, double base_mb, unsigned int n_goals)
 {
   const SlabSolverOptions options = slab_solver_options(prm);
   const unsigned int r = prm.discretization.r;
+  const bool has_adjoint = adjoint.n_space > 0;
   MemoryModel m;
-  m.primal = slab_system(primal, options, r);
-  if (adjoint)
-    m.adjoint = slab_system(*adjoint, options, r);
+  m.primal = primal;
+  m.adjoint = adjoint;
   m.r = r;
   m.n_slabs = n_slabs;
-  m.time_dependent = primal.scene.coefficients_depend_on_time();
+  m.time_dependent = time_dependent;
   m.lean_direct = releases_assembly_matrices(options, !m.time_dependent);
   m.krylov_vectors = prm.solver.iterative.restart + 2;
-  if (adjoint)
+  if (has_adjoint)
   {
     // one adjoint per goal (goal.weights = estimate, per_goal_estimates): every goal's
     // adjoint is marched before the estimates
@@ -172,6 +177,61 @@ MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
   }
   m.base_mb = base_mb;
   return m;
+}
+
+/// The slab system of FE_Q(degree) on `cells` cells of a structured mesh, predicted:
+/// (n p + 1)^2 ~ cells p^2 DoFs, each coupled with (p + 2)^2 DoFs on average (exact for
+/// the interior of a uniform mesh: vertex, edge and cell DoFs together).
+SlabSystemSize predicted_system(double cells, unsigned int degree,
+                                const SlabSolverOptions &options, unsigned int r,
+                                bool constant)
+{
+  SlabSystemSize s;
+  s.n_space = cells * degree * degree;
+  s.nnz_space = s.n_space * (degree + 2.) * (degree + 2.);
+  s.degree = degree;
+  const bool reused = options.reuse_factorization && constant;
+  s.iterative = solves_iteratively(options, s.n_space, r + 1, degree, reused);
+  s.modes = solves_by_modes(options, s.n_space, r + 1, degree, constant, reused);
+  return s;
+}
+} // namespace
+
+MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
+                         const Space<2> *adjoint, unsigned int n_slabs, double base_mb,
+                         unsigned int n_goals)
+{
+  const SlabSolverOptions options = slab_solver_options(prm);
+  const unsigned int r = prm.discretization.r;
+  return memory_model(prm, slab_system(primal, options, r),
+                      adjoint ? slab_system(*adjoint, options, r) : SlabSystemSize(),
+                      primal.scene.coefficients_depend_on_time(), n_slabs, base_mb,
+                      n_goals);
+}
+
+void check_initial_mesh_memory(const Parameters &prm, const Scene<2> &scene,
+                               double coarse_cells, unsigned int adjoint_degree,
+                               unsigned int n_goals, const MemoryLimit &limit)
+{
+  const unsigned int k = prm.discretization.initial_refinements, r = prm.discretization.r;
+  const double cells = coarse_cells * std::pow(4., double(k));
+  const SlabSolverOptions options = slab_solver_options(prm);
+  const bool constant = !scene.coefficients_depend_on_time();
+  const SlabSystemSize primal =
+      predicted_system(cells, prm.discretization.p, options, r, constant);
+  const SlabSystemSize adjoint =
+      adjoint_degree > 0 ? predicted_system(cells, adjoint_degree, options, r, constant)
+                         : SlabSystemSize();
+  const MemoryModel model =
+      memory_model(prm, primal, adjoint, !constant, prm.discretization.n_slabs,
+                   mpi_max(resident_memory_mb()), n_goals);
+  // (the mesh is part of the calibrated bytes per DoF, at least one DoF per cell)
+  const double estimate = estimate_memory(model).total_mb;
+  std::ostringstream note;
+  note << " (predicted before the mesh is built: " << json_number(coarse_cells, 10)
+       << " coarse cells x 4^" << k << " = " << json_number(cells, 15) << " cells)";
+  check_memory(adjoint_degree > 0 ? "loop 1" : "the run", estimate, limit, model,
+               note.str());
 }
 
 void check_memory(const std::string &what, double estimate_mb, const MemoryLimit &limit,

@@ -84,6 +84,16 @@ MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
                          const Space<2> *adjoint, unsigned int n_slabs, double base_mb,
                          unsigned int n_goals = 1);
 
+/// Before the mesh is refined: the memory estimate of the first DWR loop (adjoint of
+/// degree adjoint_degree) or, with adjoint_degree = 0, of a primal-only run, predicted
+/// from the coarse mesh's cells times 4^discretization.initial_refinements (FE_Q(p) on
+/// a structured mesh); ResourceLimitError (as check_memory) if it
+/// exceeds the limit. A setting too large for the memory stops here, before a mesh or
+/// DoFs are built.
+void check_initial_mesh_memory(const Parameters &prm, const Scene<2> &scene,
+                               double coarse_cells, unsigned int adjoint_degree,
+                               unsigned int n_goals, const MemoryLimit &limit);
+
 /// Throws ResourceLimitError with a one-line message naming `what` (e.g. "loop 3"),
 /// the estimate, the limit and the sizes if estimate_mb > limit.mb.
 void check_memory(const std::string &what, double estimate_mb, const MemoryLimit &limit,

@@ -1,6 +1,7 @@
 #include "study/probes.h"
 
 #include "base/mpi.h"
+#include "io/table.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace anisodwr
 {
@@ -229,7 +231,7 @@ void write_line_csv(const std::string &path, const LineEvaluator<dim> &line,
 {
   if (!writes_output())
     return;
-  std::ofstream f(path);
+  std::ostringstream f;
   f << "s,x,y,u\n" << std::setprecision(10);
   const auto bp = line.breakpoints();
   auto row = [&](double s)
@@ -244,6 +246,7 @@ void write_line_csv(const std::string &path, const LineEvaluator<dim> &line,
       for (unsigned int j = 1; j <= per_piece; ++j)
         row(bp[k] + (bp[k + 1] - bp[k]) * j / (per_piece + 1));
   }
+  write_file_atomically_here(path, f.str());
 }
 
 template class LineEvaluator<2>;
