@@ -129,6 +129,20 @@ public:
   virtual double neumann_value(const dealii::Point<dim> &x,
                                const dealii::Tensor<1, dim> &n, double t) const;
 
+  /// The Dirichlet and Neumann data on the boundary part `id` (what the assembly
+  /// calls). Default: dirichlet_value(x, t) and neumann_value(x, n, t), the same on
+  /// every part.
+  virtual double boundary_value(const dealii::Point<dim> &x, double t,
+                                dealii::types::boundary_id) const
+  {
+    return dirichlet_value(x, t);
+  }
+  virtual double boundary_flux(const dealii::Point<dim> &x, const dealii::Tensor<1, dim> &n,
+                               double t, dealii::types::boundary_id) const
+  {
+    return neumann_value(x, n, t);
+  }
+
   /// The scene's goal functionals (doc/method.md §10); `radius` is the mollifier radius
   /// of point goals. Default: the value at the domain's centre (0.5, 0.5) at T.
   virtual std::vector<GoalSpec> default_goals(double radius) const;
