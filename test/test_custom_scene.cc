@@ -172,3 +172,29 @@ TEST(CustomScene, GmshDomain)
   EXPECT_EQ(scene->boundary_value(Point<2>(0., 0.5), 0.05, 1), 0.);
   EXPECT_EQ(scene->exact(), nullptr);
 }
+
+TEST(CustomScene, GeneratorWithCurvedBoundary)
+{
+  // deal.II's channel_with_cylinder: (0, 2.2) x (0, 0.41) without the disc of radius
+  // 0.05 at (0.2, 0.2), a TransfiniteInterpolationManifold around it; colorized ids 0
+  // inflow, 1 outflow, 2 cylinder, 3 walls
+  const auto scene = create_scene<2>(Parameters::from_overrides(
+      {"scene.name=custom", "scene.grid=channel_with_cylinder",
+       "scene.grid_arguments=0.03 : 2 : 2.0 : true", "scene.dirichlet=0: 0; 2: 1",
+       "scene.neumann=1, 3: 0"}));
+  dealii::Triangulation<2> tria;
+  scene->make_coarse_grid(tria);
+  tria.refine_global(2);
+  double r_min = 1;
+  for (const auto &face : tria.active_face_iterators())
+    if (face->at_boundary() && face->boundary_id() == 2)
+      r_min = std::min(r_min, face->center().distance(Point<2>(0.2, 0.2)));
+  EXPECT_NEAR(r_min, 0.05, 1e-3); // face centres on the refined circle
+  const auto box = scene->bounding_box();
+  EXPECT_NEAR(box[1][0], 2.2, 1e-12);
+  EXPECT_NEAR(box[1][1], 0.41, 1e-12);
+  EXPECT_FALSE(scene->contains(Point<2>(0.2, 0.2)));
+  EXPECT_FALSE(scene->contains(Point<2>(0.2, 0.245)));
+  EXPECT_TRUE(scene->contains(Point<2>(0.2, 0.26)));
+  EXPECT_TRUE(scene->contains(Point<2>(1., 0.2)));
+}

@@ -175,8 +175,19 @@ struct CustomScene::Geometry
   std::array<Point<2>, 2> box;
   double tol = 0;
   std::set<types::boundary_id> ids;
+  /// a generator's name and arguments; empty for a mesh file
+  std::string generator, arguments;
 
   void build(const SceneOptions &o, std::string &domain);
+  /// The coarse mesh into `tria`: a generator's is generated again (its manifolds, e.g.
+  /// a TransfiniteInterpolationManifold, then belong to `tria`), a file's copied.
+  void make(Triangulation<2> &tria) const
+  {
+    if (generator.empty())
+      tria.copy_triangulation(coarse);
+    else
+      GridGenerator::generate_from_name_and_arguments(tria, generator, arguments);
+  }
   void read_mesh(const SceneOptions &o, std::string &domain);
 };
 
@@ -223,6 +234,8 @@ void CustomScene::Geometry::build(const SceneOptions &o, std::string &domain)
     try
     {
       GridGenerator::generate_from_name_and_arguments(coarse, name, args);
+      generator = name;
+      arguments = args;
     }
     catch (const std::exception &e)
     {
@@ -243,11 +256,19 @@ void CustomScene::Geometry::build(const SceneOptions &o, std::string &domain)
       ids.insert(face->boundary_id());
 
   // a refined copy with at most about 2e4 cells
-  fine.copy_triangulation(coarse);
-  unsigned int k = 0;
-  while (k < 3 && fine.n_active_cells() * std::pow(4., k + 1) <= 2e4)
-    ++k;
-  fine.refine_global(k);
+  try
+  {
+    make(fine);
+    unsigned int k = 0;
+    while (k < 3 && fine.n_active_cells() * std::pow(4., k + 1) <= 2e4)
+      ++k;
+    fine.refine_global(k);
+  }
+  catch (const std::exception &e)
+  {
+    throw InputError(o.source(generator.empty() ? "scene.mesh_file" : "scene.grid") +
+                     ": the domain " + domain + " cannot be refined: " + one_line(e.what()));
+  }
   box = {{fine.begin_active()->vertex(0), fine.begin_active()->vertex(0)}};
   for (const auto &cell : fine.active_cell_iterators())
   {
@@ -438,7 +459,7 @@ void CustomScene::read_goals(const SceneOptions &o)
 
 void CustomScene::make_coarse_grid(Triangulation<2, 2> &tria) const
 {
-  tria.copy_triangulation(geometry->coarse);
+  geometry->make(tria);
 }
 
 Tensor<1, 2> CustomScene::convection(const Point<2> &x, double t) const
