@@ -163,8 +163,9 @@ std::vector<Entry> scene_entries()
        "custom: scene.goals are integrals over (0, T) (true) or values at T (false)."},
       {"scene", "check_tolerance", "1e-6", c(&C::check_tolerance), real(0.),
        "custom with scene.exact_solution: largest accepted mismatch of the data, relative "
-       "to the largest PDE term (f), max|u| (u_0, g_D) or max|eps grad u.n| (g_N) at the "
-       "sample points; the PDE residual uses difference quotients of u."},
+       "to the largest sum of |terms| of the PDE (f), max|u| (u_0, g_D) or max|eps grad "
+       "u.n| (g_N) over the sample points; the PDE residual uses difference quotients of "
+       "u."},
   };
 }
 
