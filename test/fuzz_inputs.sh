@@ -123,6 +123,33 @@ python3 -c "print('{\"a\": [' + '[' * 100000)" >"$tmp/deep2.json"
 check "deep2.json" -- "$tmp/deep2.json"
 check "$tmp" -- "$tmp"
 check "missing.json" -- "$tmp/missing.json"
+# the custom scene (scene.name = custom): expressions, boundary ids, mesh files, data
+mesh=$src/config/custom_mesh.json
+example=$src/config/custom_example.json
+for v in 'sin(x' 'x+' '2*' 'x y' 'q' '(1' 'sin()' '1/' ''; do
+  check "scene.rhs" -- "$mesh" --set "scene.rhs=$v"
+done
+check "scene.reaction" -- "$mesh" --set "scene.reaction=nx"
+check "scene.initial_value" -- "$mesh" --set "scene.initial_value=u"
+check "scene.neumann" -- "$mesh" --set "scene.neumann=2, 3: nz"
+check "scene.convection" -- "$mesh" --set "scene.convection=1; 2; 3"
+check "scene.constants" -- "$mesh" --set "scene.constants=x = 1"
+check "scene.constants" -- "$mesh" --set "scene.constants=a = 1, a = 2"
+check "scene.constants" -- "$mesh" --set "scene.constants=a = b"
+check "scene.dirichlet" -- "$mesh" --set "scene.dirichlet=4: 1"
+check "scene.dirichlet" -- "$mesh" --set "scene.dirichlet=1, 4, 9: 1"
+check "scene.dirichlet" -- "$mesh" --set "scene.dirichlet=a: 1"
+check "scene.dirichlet" -- "$mesh" --set "scene.dirichlet=1: 0; 4: 1; 2: 0"
+check "scene.mesh_file" -- "$mesh" --set "scene.mesh_file=missing.msh"
+check "scene.mesh_file" -- "$mesh" --set "scene.mesh_file=$tmp"
+check "scene.mesh_file" -- "$mesh" --set "scene.mesh_file=$src/README.md"
+check "scene.grid" -- "$example" --set "scene.grid_arguments=0 : 1"
+check "scene.goals" -- "$mesh" --set "scene.goals=point 9, 9"
+check "scene.goals" -- "$mesh" --set "scene.goals=mean 0, 0, 3, 1"
+check "scene.goals" -- "$mesh" --set "scene.goals=line 0, 0"
+check "scene.rhs" -- "$example" --set "scene.rhs=exp(-t)"
+check "scene.neumann" -- "$example" --set "scene.neumann=2, 3: 0"
+check "scene.initial_value" -- "$example" --set "scene.initial_value=1"
 echo "$count bad inputs checked"
 [ "$count" -ge 100 ] || { echo "FAIL: corpus smaller than 100"; fail=1; }
 exit $fail

@@ -110,11 +110,14 @@ const std::shared_ptr<PatternBase> by_name = nullptr;
 std::vector<Entry> scene_entries()
 {
   using S = SceneSection;
+  using C = CustomSceneOptions;
   const auto m = [](auto member) { return at(&Parameters::scene, member); };
+  const auto c = [](auto member) { return at(&Parameters::scene, &S::custom, member); };
   return {
       {"scene", "name", "moving_hump", m(&S::name), by_name,
        "Benchmark scene (see doc/method.md §10): moving_hump, manufactured, heat, "
-       "boundary_layer or hemker."},
+       "boundary_layer or hemker; or custom: the scene defined by the keys scene.grid ... "
+       "scene.check_tolerance below."},
       {"scene", "variant", "", m(&S::variant), text,
        "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
        "alpha), poly_space (rotating coefficients, spatial part in Q2). heat: poly "
@@ -126,6 +129,53 @@ std::vector<Entry> scene_entries()
       {"scene", "end_time", "0.5", m(&S::end_time), real(0.),
        "Final time, 0 < T <= 1e6 (larger values are rejected as meaningless).",
        "a number with 0 < v <= 1e6", Check::bounded_positive},
+      // the custom scene (scene.name = custom; ignored by the other scenes)
+      {"scene", "constants", "", c(&C::constants), text,
+       "custom: named constants of the expressions, 'name = value, ...'; a value is an "
+       "expression in the constants before it, eps (scene.epsilon) and pi."},
+      {"scene", "grid", "hyper_cube", c(&C::grid), text,
+       "custom: the domain from a deal.II GridGenerator function by name (hyper_cube, "
+       "hyper_rectangle, subdivided_hyper_rectangle, hyper_shell, channel_with_cylinder, "
+       "plate_with_a_hole, ...), with the arguments scene.grid_arguments; its boundary ids "
+       "are the generator's (colorize = true numbers the sides)."},
+      {"scene", "grid_arguments", "0 : 1 : true", c(&C::grid_arguments), text,
+       "custom: the arguments of scene.grid after the triangulation, separated by ':', "
+       "points as 'x, y' (e.g. hyper_rectangle: '0, 0 : 2, 1 : true')."},
+      {"scene", "mesh_file", "", c(&C::mesh_file), text,
+       "custom: a Gmsh .msh file of quadrilaterals (ASCII, format 2 or 4) as the domain, "
+       "instead of scene.grid; the physical tags of its lines are the boundary ids. A "
+       "relative path is relative to the config file's directory (to the working "
+       "directory with --set)."},
+      {"scene", "convection", "0; 0", c(&C::convection), text,
+       "custom: b = (b_x; b_y), two expressions in x, y, t separated by ';'. The "
+       "coefficients depend on time if t appears in b or alpha."},
+      {"scene", "reaction", "0", c(&C::reaction), text,
+       "custom: alpha, an expression in x, y, t."},
+      {"scene", "rhs", "0", c(&C::rhs), text, "custom: f, an expression in x, y, t."},
+      {"scene", "initial_value", "0", c(&C::initial_value), text,
+       "custom: u_0, an expression in x, y (t = 0)."},
+      {"scene", "dirichlet", "0, 1, 2, 3: 0", c(&C::dirichlet), text,
+       "custom: Dirichlet data u = g_D by boundary id, 'ids: expression; ...' with "
+       "comma-separated ids and expressions in x, y, t. Every boundary id of the domain "
+       "is in scene.dirichlet or scene.neumann."},
+      {"scene", "neumann", "", c(&C::neumann), text,
+       "custom: Neumann data eps grad u.n = g_N by boundary id, 'ids: expression; ...', "
+       "expressions in x, y, t and the outward normal nx, ny."},
+      {"scene", "exact_solution", "", c(&C::exact_solution), text,
+       "custom: the exact solution u(x, y, t) if known (empty: none): then J_exact, the "
+       "error norms and I_eff are computed, and f, u_0 and the boundary data are checked "
+       "against u at sample points (scene.check_tolerance)."},
+      {"scene", "goals", "", c(&C::goals), text,
+       "custom: the scene's goals (goal.kind = scene), '[name =] point x, y' or '[name =] "
+       "mean x0, y0, x1, y1', separated by ';' (names default to point_1, mean_2, ...); "
+       "empty: the value at the centre of the bounding box at T."},
+      {"scene", "goals_over_time", "false", c(&C::goals_over_time), boolean,
+       "custom: scene.goals are integrals over (0, T) (true) or values at T (false)."},
+      {"scene", "check_tolerance", "1e-6", c(&C::check_tolerance), real(0.),
+       "custom with scene.exact_solution: largest accepted mismatch of the data, relative "
+       "to the largest sum of |terms| of the PDE (f), max|u| (u_0, g_D) or max|eps grad "
+       "u.n| (g_N) over the sample points; the PDE residual uses difference quotients of "
+       "u."},
   };
 }
 

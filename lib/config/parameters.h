@@ -10,6 +10,7 @@
 #include "adaptivity/choices.h"
 #include "base/choice.h"
 #include "goal/goal_spec.h"
+#include "scene/custom_options.h"
 #include "scene/scene_name.h"
 #include "slab/slab_solver_options.h"
 
@@ -73,6 +74,8 @@ struct SceneSection
   std::string variant = "";
   double epsilon = 1e-6;
   double end_time = 0.5;
+  /// scene.name = custom: the keys that define the scene (scene/custom_options.h)
+  CustomSceneOptions custom;
 };
 
 struct DiscretizationSection

@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include "base/errors.h"
+#include "scene/custom_scene.h"
 #include "scene/scenes.h"
 
 namespace anisodwr
@@ -116,6 +117,12 @@ template <int dim> std::unique_ptr<Scene<dim>> create_scene(const SceneOptions &
       break;
     case SceneName::hemker:
       scene = std::make_unique<Hemker>(o.epsilon, o.variant);
+      break;
+    case SceneName::custom:
+      if (!o.variant.empty())
+        throw InputError(o.variant_source + ": invalid value '" + o.variant +
+                         "' for key 'scene.variant' of scene 'custom'; expected \"\"");
+      scene = std::make_unique<CustomScene>(o);
       break;
     }
     scene->end_time = o.end_time;

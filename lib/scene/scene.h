@@ -6,11 +6,13 @@
 #include <deal.II/base/types.h>
 
 #include "goal/goal_spec.h"
+#include "scene/custom_options.h"
 #include "scene/scene_name.h"
 
 #include <array>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -33,6 +35,16 @@ struct SceneOptions
   double epsilon = 1e-6;
   double end_time = 0.5;
   std::string variant_source = "default";
+  /// scene.name = custom: its keys, and where each came from (by key name, e.g.
+  /// "scene.rhs": a config file's path, "--set" or "default"; a relative
+  /// scene.mesh_file is found next to the config file it came from)
+  CustomSceneOptions custom;
+  std::map<std::string, std::string> sources;
+  std::string source(const std::string &key) const
+  {
+    const auto it = sources.find(key);
+    return it == sources.end() ? "default" : it->second;
+  }
 };
 
 /// Exact solution with analytic derivatives (no finite differences).
@@ -128,6 +140,19 @@ public:
   /// eps grad u . n on the Neumann boundary.
   virtual double neumann_value(const dealii::Point<dim> &x,
                                const dealii::Tensor<1, dim> &n, double t) const;
+  /// The Dirichlet and Neumann data on the boundary part `id` (what the assembly
+  /// calls). Default: dirichlet_value(x, t) and neumann_value(x, n, t), the same on
+  /// every part.
+  virtual double boundary_value(const dealii::Point<dim> &x, double t,
+                                dealii::types::boundary_id) const
+  {
+    return dirichlet_value(x, t);
+  }
+  virtual double boundary_flux(const dealii::Point<dim> &x, const dealii::Tensor<1, dim> &n,
+                               double t, dealii::types::boundary_id) const
+  {
+    return neumann_value(x, n, t);
+  }
 
   /// The scene's goal functionals (doc/method.md §10); `radius` is the mollifier radius
   /// of point goals. Default: the value at the domain's centre (0.5, 0.5) at T.

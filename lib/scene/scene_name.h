@@ -10,7 +10,8 @@ enum class SceneName
   manufactured,
   heat,
   boundary_layer,
-  hemker
+  hemker,
+  custom ///< defined in the config (lib/scene/custom_scene.h)
 };
 
 inline const std::vector<Named<SceneName>> &names(SceneName)
@@ -20,7 +21,8 @@ inline const std::vector<Named<SceneName>> &names(SceneName)
       {SceneName::manufactured, "manufactured"},
       {SceneName::heat, "heat"},
       {SceneName::boundary_layer, "boundary_layer"},
-      {SceneName::hemker, "hemker"}};
+      {SceneName::hemker, "hemker"},
+      {SceneName::custom, "custom"}};
   return table;
 }
 } // namespace anisodwr

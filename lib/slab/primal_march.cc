@@ -113,7 +113,8 @@ template <int dim> double data_bound(const Space<dim> &space, const TimeMesh &me
       if (face->at_boundary() && scene.dirichlet_ids.count(face->boundary_id()))
         for (unsigned int v = 0; v < face->n_vertices(); ++v)
           for (unsigned int n = 0; n <= mesh.n_slabs(); ++n)
-            g = std::max(g, std::abs(scene.dirichlet_value(face->vertex(v), mesh.t[n])));
+            g = std::max(g, std::abs(scene.boundary_value(face->vertex(v), mesh.t[n],
+                                                          face->boundary_id())));
   for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
   {
     double fn = 0;

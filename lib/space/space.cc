@@ -55,10 +55,12 @@ void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> 
 {
   c.clear();
   DoFTools::make_hanging_node_constraints(dofs, c);
-  const ScalarFunctionFromFunctionObject<dim> g([&](const Point<dim> &x)
-                                                { return scene.dirichlet_value(x, t); });
   for (const auto id : scene.dirichlet_ids)
+  {
+    const ScalarFunctionFromFunctionObject<dim> g([&](const Point<dim> &x)
+                                                  { return scene.boundary_value(x, t, id); });
     VectorTools::interpolate_boundary_values(map, dofs, id, g, c);
+  }
   c.close();
 }
 
@@ -215,14 +217,15 @@ void Space<dim>::add_neumann_loads(const std::vector<double> &times,
       for (const auto face : cell->face_indices())
         if (cell->at_boundary(face) && scene.neumann_ids.count(cell->face(face)->boundary_id()))
         {
+          const types::boundary_id id = cell->face(face)->boundary_id();
           ffv.reinit(cell, face);
           cell->get_dof_indices(idx);
           for (std::size_t k = 0; k < times.size(); ++k)
             for (unsigned int q = 0; q < fquad.size(); ++q)
             {
-              const double g =
-                  scene.neumann_value(ffv.quadrature_point(q), ffv.normal_vector(q), times[k]) *
-                  ffv.JxW(q);
+              const double g = scene.boundary_flux(ffv.quadrature_point(q),
+                                                   ffv.normal_vector(q), times[k], id) *
+                               ffv.JxW(q);
               for (unsigned int i = 0; i < n; ++i)
                 F[k](idx[i]) += g * ffv.shape_value(i, q);
             }

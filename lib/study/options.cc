@@ -13,6 +13,10 @@ SceneOptions scene_options(const Parameters &prm)
   o.epsilon = prm.scene.epsilon;
   o.end_time = prm.scene.end_time;
   o.variant_source = prm.source("scene.variant");
+  o.custom = prm.scene.custom;
+  for (const auto &[key, source] : prm.sources)
+    if (key.rfind("scene.", 0) == 0)
+      o.sources[key] = source;
   return o;
 }
 

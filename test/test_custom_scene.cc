@@ -1,0 +1,200 @@
+// The custom scene (scene.name = custom): its expressions give the built-in moving
+// hump's data, the check against the exact solution catches wrong data, the boundary ids
+// and expressions are checked, and the Gmsh domain answers contains().
+#include "base/errors.h"
+#include "config/parameters.h"
+#include "scene/custom_scene.h"
+#include "study/options.h"
+
+#include <deal.II/grid/tria.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace anisodwr;
+using dealii::Point;
+
+namespace
+{
+const std::string src = ANISODWR_SOURCE_DIR;
+
+std::unique_ptr<Scene<2>> scene_of(const std::string &config,
+                                   const std::vector<std::string> &overrides = {})
+{
+  return create_scene<2>(Parameters::read(src + "/config/" + config, overrides));
+}
+
+/// The message of the InputError the config with the overrides raises ("" if none).
+std::string error_of(const std::string &config, const std::vector<std::string> &overrides)
+{
+  try
+  {
+    scene_of(config, overrides);
+  }
+  catch (const InputError &e)
+  {
+    return e.what();
+  }
+  return "";
+}
+} // namespace
+
+TEST(CustomScene, ReproducesTheMovingHumpsData)
+{
+  const auto custom = scene_of("custom_moving_hump.json");
+  const auto hump = scene_of("moving_hump.json");
+  ASSERT_NE(custom->exact(), nullptr);
+  EXPECT_FALSE(custom->coefficients_depend_on_time());
+  for (const double t : {0., 0.13, 0.37, 0.5})
+    for (const double x : {0.05, 0.3, 0.5, 0.71, 0.99})
+      for (const double y : {0.02, 0.26, 0.5, 0.8})
+      {
+        const Point<2> p(x, y);
+        const double f = hump->rhs(p, t), u = hump->exact()->value(p, t);
+        EXPECT_NEAR(custom->rhs(p, t), f, 1e-12 * std::max(1., std::abs(f)))
+            << p << " " << t;
+        EXPECT_NEAR(custom->exact()->value(p, t), u, 1e-14) << p << " " << t;
+        EXPECT_EQ(custom->convection(p, t), hump->convection(p, t));
+        EXPECT_EQ(custom->reaction(p, t), hump->reaction(p, t));
+        EXPECT_EQ(custom->initial_value(p), hump->initial_value(p));
+      }
+  const auto a = custom->default_goals(0.01), b = hump->default_goals(0.01);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t g = 0; g < a.size(); ++g)
+  {
+    EXPECT_EQ(a[g].name, b[g].name);
+    EXPECT_EQ(a[g].center, b[g].center);
+    EXPECT_EQ(a[g].radius, b[g].radius);
+    EXPECT_EQ(a[g].over_time, b[g].over_time);
+  }
+}
+
+TEST(CustomScene, ConsistentDataPassTheCheck)
+{
+  EXPECT_EQ(error_of("custom_example.json", {}), "");
+  EXPECT_EQ(error_of("custom_moving_hump.json", {}), "");
+}
+
+TEST(CustomScene, CheckCatchesAWrongRhs)
+{
+  // f without the convection term b.grad u
+  const std::string e =
+      error_of("custom_example.json",
+               {"scene.rhs=exp(-t)*(-eps*sin(a*pi*x)*(2-(a*pi)^2*(1+y^2)))"});
+  EXPECT_NE(e.find("key 'scene.rhs' does not match scene.exact_solution"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("PDE residual"), std::string::npos) << e;
+  EXPECT_NE(e.find("at (x, y, t) = ("), std::string::npos) << e;
+  // a relative error of 1e-4 in f is found at the default tolerance, and accepted at 1e-3
+  const std::string f_scaled =
+      "scene.rhs=1.0001*exp(-t)*(-eps*sin(a*pi*x)*(2-(a*pi)^2*(1+y^2)) + "
+      "bx*a*pi*cos(a*pi*x)*(1+y^2) + by*sin(a*pi*x)*2*y)";
+  EXPECT_NE(error_of("custom_example.json", {f_scaled}).find("scene.rhs"),
+            std::string::npos);
+  EXPECT_EQ(error_of("custom_example.json", {f_scaled, "scene.check_tolerance=1e-3"}),
+            "");
+}
+
+TEST(CustomScene, CheckCatchesWrongInitialAndBoundaryData)
+{
+  EXPECT_NE(error_of("custom_example.json", {"scene.initial_value=sin(a*pi*x)"})
+                .find("key 'scene.initial_value' does not match"),
+            std::string::npos);
+  // u vanishes on x = 0, 2: 0 is right there, 1e-3 y is not
+  EXPECT_EQ(error_of("custom_example.json", {"scene.dirichlet=0, 1: 0"}), "");
+  EXPECT_NE(error_of("custom_example.json", {"scene.dirichlet=0, 1: 1e-3*y"})
+                .find("key 'scene.dirichlet' does not match"),
+            std::string::npos);
+  // the flux with the sign of the inward normal
+  EXPECT_NE(error_of("custom_example.json",
+                     {"scene.neumann=2, 3: -eps*exp(-t)*(nx*a*pi*cos(a*pi*x)*(1+y^2) + "
+                      "ny*sin(a*pi*x)*2*y)"})
+                .find("key 'scene.neumann' does not match"),
+            std::string::npos);
+}
+
+TEST(CustomScene, TimeDependenceFollowsFromTheExpressions)
+{
+  const std::vector<std::string> steady{"scene.name=custom", "scene.convection=1; x"};
+  EXPECT_FALSE(
+      create_scene<2>(Parameters::from_overrides(steady))->coefficients_depend_on_time());
+  EXPECT_TRUE(create_scene<2>(Parameters::from_overrides(
+                                  {"scene.name=custom", "scene.convection=1; sin(t)"}))
+                  ->coefficients_depend_on_time());
+  EXPECT_TRUE(create_scene<2>(
+                  Parameters::from_overrides({"scene.name=custom", "scene.reaction=1+t"}))
+                  ->coefficients_depend_on_time());
+}
+
+TEST(CustomScene, BoundaryIdsAndExpressionsAreChecked)
+{
+  const std::string missing = error_of("custom_mesh.json", {"scene.neumann=2: 0"});
+  EXPECT_NE(missing.find("boundary id 3 of the domain"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("has no condition"), std::string::npos) << missing;
+  const std::string unknown = error_of("custom_mesh.json", {"scene.neumann=2, 3, 7: 0"});
+  EXPECT_NE(unknown.find("boundary id 7 in key 'scene.neumann' is not a boundary id"),
+            std::string::npos)
+      << unknown;
+  const std::string twice = error_of("custom_mesh.json", {"scene.neumann=1, 2, 3: 0"});
+  EXPECT_NE(twice.find("has a condition already"), std::string::npos) << twice;
+  const std::string bad = error_of("custom_mesh.json", {"scene.rhs=sin(x"});
+  EXPECT_NE(bad.find("invalid expression 'sin(x' for key 'scene.rhs'"), std::string::npos)
+      << bad;
+  const std::string var = error_of("custom_mesh.json", {"scene.reaction=z*2"});
+  EXPECT_NE(var.find("for key 'scene.reaction'"), std::string::npos) << var;
+  EXPECT_NE(var.find("\"z\""), std::string::npos) << var;
+  const std::string constant =
+      error_of("custom_mesh.json", {"scene.constants=t_on = 1/"});
+  EXPECT_NE(constant.find("scene.constants"), std::string::npos) << constant;
+}
+
+TEST(CustomScene, GmshDomain)
+{
+  const auto scene = scene_of("custom_mesh.json");
+  dealii::Triangulation<2> tria;
+  scene->make_coarse_grid(tria);
+  EXPECT_EQ(tria.n_active_cells(), 17u);
+  const auto box = scene->bounding_box();
+  EXPECT_EQ(box[0], Point<2>(0., 0.));
+  EXPECT_EQ(box[1], Point<2>(3., 1.));
+  EXPECT_TRUE(scene->contains(Point<2>(0.5, 0.5)));
+  EXPECT_TRUE(scene->contains(Point<2>(0.75, 0.5))); // on the obstacle's side
+  EXPECT_FALSE(scene->contains(Point<2>(1., 0.5)));  // in the obstacle
+  EXPECT_FALSE(scene->contains(Point<2>(3.5, 0.5)));
+  EXPECT_TRUE(scene->contains_box(Point<2>(1.5, 0.), Point<2>(3., 1.)));
+  EXPECT_FALSE(
+      scene->contains_box(Point<2>(0.5, 0.), Point<2>(2., 1.))); // holds the hole
+  EXPECT_EQ(scene->dirichlet_ids, (std::set<dealii::types::boundary_id>{1, 4}));
+  EXPECT_EQ(scene->neumann_ids, (std::set<dealii::types::boundary_id>{2, 3}));
+  EXPECT_EQ(scene->boundary_value(Point<2>(1., 0.375), 0.05, 4), 1. - std::exp(-1.));
+  EXPECT_EQ(scene->boundary_value(Point<2>(0., 0.5), 0.05, 1), 0.);
+  EXPECT_EQ(scene->exact(), nullptr);
+}
+
+TEST(CustomScene, GeneratorWithCurvedBoundary)
+{
+  // deal.II's channel_with_cylinder: (0, 2.2) x (0, 0.41) without the disc of radius
+  // 0.05 at (0.2, 0.2), a TransfiniteInterpolationManifold around it; colorized ids 0
+  // inflow, 1 outflow, 2 cylinder, 3 walls
+  const auto scene = create_scene<2>(Parameters::from_overrides(
+      {"scene.name=custom", "scene.grid=channel_with_cylinder",
+       "scene.grid_arguments=0.03 : 2 : 2.0 : true", "scene.dirichlet=0: 0; 2: 1",
+       "scene.neumann=1, 3: 0"}));
+  dealii::Triangulation<2> tria;
+  scene->make_coarse_grid(tria);
+  tria.refine_global(2);
+  double r_min = 1;
+  for (const auto &face : tria.active_face_iterators())
+    if (face->at_boundary() && face->boundary_id() == 2)
+      r_min = std::min(r_min, face->center().distance(Point<2>(0.2, 0.2)));
+  EXPECT_NEAR(r_min, 0.05, 1e-3); // face centres on the refined circle
+  const auto box = scene->bounding_box();
+  EXPECT_NEAR(box[1][0], 2.2, 1e-12);
+  EXPECT_NEAR(box[1][1], 0.41, 1e-12);
+  EXPECT_FALSE(scene->contains(Point<2>(0.2, 0.2)));
+  EXPECT_FALSE(scene->contains(Point<2>(0.2, 0.245)));
+  EXPECT_TRUE(scene->contains(Point<2>(0.2, 0.26)));
+  EXPECT_TRUE(scene->contains(Point<2>(1., 0.2)));
+}
