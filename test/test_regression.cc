@@ -167,7 +167,7 @@ void check_hemker(const std::string &config, const std::string &ref, unsigned in
   for (std::size_t l = 0; l < got.size(); ++l)
   {
     got[l].insert(probes[l].begin(), probes[l].end());
-    char loop[8];
+    char loop[24];
     std::snprintf(loop, sizeof loop, "%04zu", l + 1);
     for (const char *line : {"x4", "normal"})
     {
