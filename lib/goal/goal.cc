@@ -132,10 +132,23 @@ template <int dim> struct LocalGoal<dim>::Part
         length = std::max(length, cell->vertex(v).distance(cell->vertex(v | (1u << d))));
     return length;
   }
+  /// The tensor product of q0 (index running fastest) and q1. Built point by point:
+  /// deal.II's tensor-product constructor asserts (Debug) that the weights sum to 1,
+  /// which a clipped rule or a slice of a rule does not.
   static Quadrature<dim> tensor_rule(const Quadrature<1> &q0, const Quadrature<1> &q1)
   {
     static_assert(dim == 2, "LocalGoal: tensor rule for dim = 2");
-    return Quadrature<dim>(q0, q1);
+    std::vector<Point<dim>> points;
+    std::vector<double> weights;
+    points.reserve(q0.size() * q1.size());
+    weights.reserve(q0.size() * q1.size());
+    for (unsigned int j = 0; j < q1.size(); ++j)
+      for (unsigned int i = 0; i < q0.size(); ++i)
+      {
+        points.emplace_back(q0.point(i)[0], q1.point(j)[0]);
+        weights.push_back(q0.weight(i) * q1.weight(j));
+      }
+    return Quadrature<dim>(points, weights);
   }
   FEValues<dim> &fe_values(const SubCells &n, const Mapping<dim> &mapping,
                            const FiniteElement<dim> &fe) const
