@@ -86,7 +86,7 @@ void CellKernel<dim>::add_face_terms(unsigned int m, double t, double wt,
         flux = -0.5 * eps * (gk - gn);
       }
       else if (pc.kind == 1)
-        flux = scene.neumann_value(pc.x[q], pc.normal[q], t) - eps * gk;
+        flux = scene.boundary_flux(pc.x[q], pc.normal[q], t, pc.id) - eps * gk;
       else
         flux = -eps * gk;
       for (unsigned int l = 0; l < nw; ++l)

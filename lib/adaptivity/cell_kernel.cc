@@ -60,6 +60,7 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
       ff_w.reinit(typename Triangulation<dim>::cell_iterator(cell), f);
       const auto id = cell->face(f)->boundary_id();
       add_piece(ff_p, ff_w, nullptr, {}, scene.neumann_ids.count(id) ? 1 : 2);
+      pieces.back().id = id;
     }
     else if (cell->face(f)->has_children())
     {

@@ -84,6 +84,7 @@ private:
   struct Piece
   {
     int kind; // 0 interior, 1 Neumann, 2 Dirichlet
+    dealii::types::boundary_id id = 0; ///< the boundary id (kinds 1 and 2)
     std::vector<double> JxW;
     dealii::FullMatrix<double> w, gradn, nb_gradn;
     std::vector<dealii::Point<dim>> x;

@@ -15,6 +15,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <map>
 #include <mutex>
 #include <thread>
 
@@ -512,10 +513,18 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
     // (hemker: u_0 = 0, u_D = 1 on the circle), E_tau u - u would not vanish on Gamma_D,
     // and rho*(u,z)(E_tau u - u) would weigh that incompatibility of the data, which is
     // no temporal error of u_tau h (measured: eta_tau of x_e1's goal -0.03 against a
-    // temporal error of 1e-6). u_0 takes the Dirichlet values of t_0 there.
-    AffineConstraints<double> dirichlet;
-    primal.make_dirichlet_constraints(mesh.start(0), dirichlet);
-    dirichlet.distribute(u0);
+    // temporal error of 1e-6). u_0 takes the Dirichlet values of t_0 at the DoFs on
+    // Gamma_D; all others keep their interpolated values.
+    std::map<types::global_dof_index, double> boundary;
+    for (const auto id : primal.scene.dirichlet_ids)
+    {
+      const ScalarFunctionFromFunctionObject<dim> g(
+          [&](const Point<dim> &x) { return primal.scene.boundary_value(x, mesh.start(0), id); });
+      VectorTools::interpolate_boundary_values(primal.mapping(), primal.dof_handler(), id, g,
+                                               boundary);
+    }
+    for (const auto &[i, value] : boundary)
+      u0[i] = value;
   }
   const auto &tria = primal.dof_handler().get_triangulation();
   Indicators<dim> ind;
