@@ -25,9 +25,12 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
   Vector<double> &c = scratch[0], &ct = scratch[1];
   c.reinit(np, true);
   ct.reinit(np, true);
+  std::vector<double> a(load_terms.size());
   for (unsigned int m = 0; m < g.size(); ++m)
   {
     const double t = t0 + g[m] * tau, wt = tau * omega[m];
+    for (unsigned int j = 0; j < a.size(); ++j)
+      a[j] = load_terms[j].a(t);
     combine(Un, idx, ell[m], 1., c);
     combine(Un, idx, dell[m], 1. / tau, ct);
     for (unsigned int q = 0; q < nq; ++q)
@@ -43,7 +46,7 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
         lap += c(l) * trace(fv_p.shape_hessian(l, q));
       }
       const auto cf = weak_form::coefficients(scene, x, t);
-      const double R = weak_form::residual(cf, scene.rhs(x, t), ut, uh, grad, lap);
+      const double R = weak_form::residual(cf, load(q, t, a), ut, uh, grad, lap);
       const double jx = fv_p.JxW(q) * wt;
       for (unsigned int l = 0; l < nw; ++l)
       {

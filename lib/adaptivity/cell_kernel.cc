@@ -31,6 +31,8 @@ CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
       constant_coefficients(!scene.coefficients_depend_on_time())
 {
   gauss_rule(basis.n_dofs() + 1, g, omega);
+  separable_load = scene.separable_rhs(load_terms);
+  load_at_q.assign(load_terms.size(), std::vector<double>(quad.size()));
   for (double s : g)
   {
     ell.push_back(basis.values(s));
@@ -41,12 +43,26 @@ CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
   }
 }
 
+template <int dim>
+double CellKernel<dim>::load(unsigned int q, double t, const std::vector<double> &a) const
+{
+  if (!separable_load)
+    return scene.rhs(fv_p.quadrature_point(q), t);
+  double f = 0;
+  for (unsigned int j = 0; j < a.size(); ++j)
+    f += a[j] * load_at_q[j][q];
+  return f;
+}
+
 template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
 {
   K = cell;
   fv_p.reinit(cell);
   fv_w.reinit(typename Triangulation<dim>::cell_iterator(cell));
   delta_h = primal.unbounded_delta(cell);
+  for (unsigned int j = 0; j < load_terms.size(); ++j)
+    for (unsigned int q = 0; q < quad.size(); ++q)
+      load_at_q[j][q] = load_terms[j].g(fv_p.quadrature_point(q));
   if (constant_coefficients)
     build_adjoint_matrices();
   idx.resize(fe_p.n_dofs_per_cell());
@@ -164,6 +180,7 @@ void CellKernel<dim>::combine(const Vector<double> &U,
 template CellKernel<2>::CellKernel(const Space<2> &, const FE_Q<2> &,
                                    const TemporalBasis &);
 template void CellKernel<2>::reinit(const cell_iterator &);
+template double CellKernel<2>::load(unsigned int, double, const std::vector<double> &) const;
 template void CellKernel<2>::combine(const Vector<double> &,
                                      const std::vector<types::global_dof_index> &,
                                      const std::vector<double> &, double,

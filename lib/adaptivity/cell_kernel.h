@@ -142,6 +142,14 @@ private:
   /// val part, [3] S' dt/jump part (rows: the first slot, columns: z).
   const bool constant_coefficients;
   std::array<dealii::FullMatrix<double>, 4> adj_matrices;
+
+  /// f = sum_j a_j(t) g_j(x) where the scene gives it (Scene::separable_rhs): g_j at the
+  /// cell's quadrature points, evaluated once per cell for all slabs and Gauss points.
+  bool separable_load = false;
+  std::vector<LoadTerm<dim>> load_terms;
+  std::vector<std::vector<double>> load_at_q; // [j][q]
+  /// f at quadrature point q and time t, with a[j] = a_j(t) (separable_load)
+  double load(unsigned int q, double t, const std::vector<double> &a) const;
   void build_adjoint_matrices();
 };
 
