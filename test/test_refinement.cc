@@ -116,7 +116,7 @@ TEST(Marking, BulkCriterionMarksTheFewestCellsThatCarryTheFraction)
                                               Point<2>(6, 1));
     MarkingOptions opt;
     opt.marking = Marking::cell;
-    opt.criterion = MarkingCriterion::bulk;
+    opt.marking_criterion = MarkingCriterion::bulk;
     opt.theta_h = theta;
     opt.kappa = 0.5;
     const MarkingStats s = mark_cells(tria, indicators(eta), opt);
@@ -135,7 +135,7 @@ TEST(Marking, BulkCriterionMarksTheFewestCellsThatCarryTheFraction)
   GridGenerator::subdivided_hyper_rectangle(tria, {6, 1}, Point<2>(0, 0), Point<2>(6, 1));
   MarkingOptions opt;
   opt.marking = Marking::per_direction;
-  opt.criterion = MarkingCriterion::bulk;
+  opt.marking_criterion = MarkingCriterion::bulk;
   opt.theta_h = 0.5; // x: cell 0 (1.5 >= 1.1); y: cell 1 (0.9 >= 0.9)
   mark_cells(tria, indicators(eta), opt);
   const auto f = flags(tria);

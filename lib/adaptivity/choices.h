@@ -136,4 +136,22 @@ inline const std::vector<Named<AdjointStabilization>> &names(AdjointStabilizatio
       {AdjointStabilization::none, "none"}};
   return table;
 }
+
+/// The marking options (the adaptivity section derives from them).
+struct MarkingOptions
+{
+  AdaptivityMode mode = AdaptivityMode::anisotropic;
+  /// anisotropic mode: joint ranks all (cell, direction) pairs by |eta_h,i^K| together
+  /// and marks the theta_h fraction of them; per_direction marks the theta_h fraction
+  /// of cells separately in each direction (the reference rule, doc/method.md §9; a
+  /// cell whose indicators are all large is then cut in every direction even if one
+  /// dominates).
+  /// cell: mark the theta_h fraction of cells by sum_i |eta_h,i^K|; a marked cell is
+  /// cut in direction i iff |eta_h,i^K| >= kappa * max_j |eta_h,j^K| (the directions
+  /// the cell needs, not every direction whose pair passed a global threshold).
+  Marking marking = Marking::cell;
+  /// count: theta_h is a fraction of the cells (pairs); bulk: of the indicators' sum
+  MarkingCriterion marking_criterion = MarkingCriterion::count;
+  double theta_h = 0.25, theta_coarsen = 0., kappa = 0.75;
+};
 } // namespace anisodwr

@@ -47,11 +47,11 @@ std::vector<unsigned int> bulk(const std::vector<double> &v, double theta)
   return order;
 }
 
-/// The marked indices by options.criterion (count or bulk) with fraction theta_h.
+/// The marked indices by options.marking_criterion (count or bulk) with fraction theta_h.
 std::vector<unsigned int> selected(const std::vector<double> &v,
                                    const MarkingOptions &options)
 {
-  return options.criterion == MarkingCriterion::bulk ? bulk(v, options.theta_h)
+  return options.marking_criterion == MarkingCriterion::bulk ? bulk(v, options.theta_h)
                                                      : largest(v, options.theta_h);
 }
 

@@ -10,8 +10,7 @@
 #include "adaptivity/choices.h"
 #include "base/choice.h"
 #include "goal/goal_spec.h"
-#include "scene/custom_options.h"
-#include "scene/scene_name.h"
+#include "scene/scene_options.h"
 #include "slab/slab_solver_options.h"
 
 #include <iosfwd>
@@ -68,15 +67,8 @@ inline const std::vector<Named<StudyRefine>> &names(StudyRefine)
   return table;
 }
 
-struct SceneSection
-{
-  SceneName name = SceneName::moving_hump;
-  std::string variant = "";
-  double epsilon = 1e-6;
-  double end_time = 0.5;
-  /// scene.name = custom: the keys that define the scene (scene/custom_options.h)
-  CustomSceneOptions custom;
-};
+/// The scene section: the scenes' own options (scene/scene_options.h).
+using SceneSection = SceneOptions;
 
 struct DiscretizationSection
 {
@@ -120,28 +112,16 @@ struct StudySection
   unsigned int levels = 4;
 };
 
-struct GoalSection
-{
-  GoalKind kind = GoalKind::scene;
-  std::string locations = "";
-  bool over_time = false;
-  double radius = 0.01;
-  std::string weights = "1";
-  std::string reference = ""; ///< "J_1[+-u_1], J_2[+-u_2], ..." or empty
-};
+/// The goal section: the goals' own input (goal/goal_spec.h).
+using GoalSection = GoalInput;
 
-struct AdaptivitySection
+/// The adaptivity section: the marking options (adaptivity/choices.h) and the loop's.
+struct AdaptivitySection : MarkingOptions
 {
-  AdaptivityMode mode = AdaptivityMode::anisotropic;
-  Marking marking = Marking::cell;
-  MarkingCriterion marking_criterion = MarkingCriterion::count;
-  double kappa = 0.75;
   unsigned int loops = 6;
-  double theta_h = 0.25;
   double theta_tau = 0.2;
   /// bisect slabs only in loops with |eta_tau| >= time_balance (|eta_h,x| + |eta_h,y|)
   double time_balance = 0.;
-  double theta_coarsen = 0.;
   double tolerance = 0.;
   ToleranceMeasure tolerance_measure = ToleranceMeasure::parts;
   double max_dofs = 0.;

@@ -59,4 +59,18 @@ inline double signed_goal_weight(double s, double J, double unseen = 0)
 
 /// Relative size below which the lift difference of goal.weights = auto counts as zero.
 constexpr double auto_weight_unseen = 1e-8;
+/// The goal section of a config and, for messages, where goal.locations, goal.radius
+/// and goal.weights came from (a config file's path, "--set" or "default").
+struct GoalInput
+{
+  GoalKind kind = GoalKind::scene;
+  std::string locations = ""; ///< "x,y; ..." (point) or "x0,y0,x1,y1; ..." (mean)
+  bool over_time = false;
+  double radius = 0.01;
+  std::string weights = "1"; ///< auto, one number or one per goal
+  std::string reference = ""; ///< "J_1[+-u_1], ...": reference values, or empty
+  std::string locations_source = "default", radius_source = "default",
+              weights_source = "default", reference_source = "default";
+};
+
 } // namespace anisodwr

@@ -6,8 +6,7 @@
 #include <deal.II/base/types.h>
 
 #include "goal/goal_spec.h"
-#include "scene/custom_options.h"
-#include "scene/scene_name.h"
+#include "scene/scene_options.h"
 
 #include <array>
 #include <functional>
@@ -26,26 +25,6 @@ template <int dim, int spacedim> class Triangulation;
 
 namespace anisodwr
 {
-/// The scene section of a config and, for messages, where scene.variant came from (a
-/// config file's path, "--set" or "default").
-struct SceneOptions
-{
-  SceneName name = SceneName::moving_hump;
-  std::string variant = "";
-  double epsilon = 1e-6;
-  double end_time = 0.5;
-  std::string variant_source = "default";
-  /// scene.name = custom: its keys, and where each came from (by key name, e.g.
-  /// "scene.rhs": a config file's path, "--set" or "default"; a relative
-  /// scene.mesh_file is found next to the config file it came from)
-  CustomSceneOptions custom;
-  std::map<std::string, std::string> sources;
-  std::string source(const std::string &key) const
-  {
-    const auto it = sources.find(key);
-    return it == sources.end() ? "default" : it->second;
-  }
-};
 
 /// Exact solution with analytic derivatives (no finite differences).
 template <int dim> class ExactSolution

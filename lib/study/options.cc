@@ -7,13 +7,8 @@ namespace anisodwr
 {
 SceneOptions scene_options(const Parameters &prm)
 {
-  SceneOptions o;
-  o.name = prm.scene.name;
-  o.variant = prm.scene.variant;
-  o.epsilon = prm.scene.epsilon;
-  o.end_time = prm.scene.end_time;
+  SceneOptions o = prm.scene;
   o.variant_source = prm.source("scene.variant");
-  o.custom = prm.scene.custom;
   for (const auto &[key, source] : prm.sources)
     if (key.rfind("scene.", 0) == 0)
       o.sources[key] = source;
@@ -22,13 +17,7 @@ SceneOptions scene_options(const Parameters &prm)
 
 GoalInput goal_input(const Parameters &prm)
 {
-  GoalInput in;
-  in.kind = prm.goal.kind;
-  in.locations = prm.goal.locations;
-  in.over_time = prm.goal.over_time;
-  in.radius = prm.goal.radius;
-  in.weights = prm.goal.weights;
-  in.reference = prm.goal.reference;
+  GoalInput in = prm.goal;
   in.locations_source = prm.source("goal.locations");
   in.radius_source = prm.source("goal.radius");
   in.weights_source = prm.source("goal.weights");
@@ -43,14 +32,7 @@ SlabSolverOptions slab_solver_options(const Parameters &prm)
 
 MarkingOptions marking_options(const Parameters &prm)
 {
-  MarkingOptions marking;
-  marking.mode = prm.adaptivity.mode;
-  marking.theta_h = prm.adaptivity.theta_h;
-  marking.marking = prm.adaptivity.marking;
-  marking.criterion = prm.adaptivity.marking_criterion;
-  marking.theta_coarsen = prm.adaptivity.theta_coarsen;
-  marking.kappa = prm.adaptivity.kappa;
-  return marking;
+  return prm.adaptivity; // the section is the marking options plus the loop's keys
 }
 
 namespace
