@@ -132,7 +132,7 @@ int main(int argc, char **argv)
   Triangulation<2> tria;
   scene->make_coarse_grid(tria);
   tria.refine_global(refs);
-  Space<2> space(*scene, tria, p, 1.0);
+  Space<2> space(*scene, tria, p, Stabilization{1.0, SupgLength::volume, 0.});
   space.setup();
   const TemporalBasis basis(r);
   SlabSolverOptions o; // matrix-free Krylov options: prepare() only assembles the terms

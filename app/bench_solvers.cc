@@ -143,7 +143,7 @@ int main(int argc, char **argv)
       cell->set_refine_flag(RefinementCase<2>::cut_y);
     tria.execute_coarsening_and_refinement();
   }
-  Space<2> space(*scene, tria, p, 1.0);
+  Space<2> space(*scene, tria, p, Stabilization{1.0, SupgLength::volume, 0.});
   const char *numbering_env = std::getenv("BENCH_NUMBERING");
   const std::string numbering = numbering_env ? numbering_env : "native";
   space.set_downstream_numbering(numbering == "downstream");

@@ -32,7 +32,8 @@ struct SlabProblem
     // one anisotropic refinement: hanging nodes in the constraints
     tria.begin_active()->set_refine_flag(dealii::RefinementCase<2>::cut_x);
     tria.execute_coarsening_and_refinement();
-    space = std::make_unique<anisodwr::Space<2>>(*scene, tria, p, 1.0);
+    space = std::make_unique<anisodwr::Space<2>>(
+        *scene, tria, p, anisodwr::Stabilization{1.0, anisodwr::SupgLength::volume, 0.});
     space->setup();
   }
 };

@@ -61,7 +61,7 @@ TEST(Mollifier, IntegratesToOne)
   for (unsigned int p : {1u, 2u})
     for (double s : {0.05, 0.2})
     {
-      Space<2> space(*scene, tria, p, 0.);
+      Space<2> space(*scene, tria, p, Stabilization{0., SupgLength::volume, 0.});
       space.setup();
       GoalSpec g;
       g.center = {0.45, 0.5};
@@ -89,7 +89,7 @@ double mollified_linear_error(const std::array<unsigned int, 2> &cells, unsigned
   Triangulation<2> tria;
   GridGenerator::subdivided_hyper_rectangle(tria, {cells[0], cells[1]}, Point<2>(0., 0.),
                                             Point<2>(1., 1.));
-  Space<2> space(*scene, tria, p, 0.);
+  Space<2> space(*scene, tria, p, Stabilization{0., SupgLength::volume, 0.});
   space.setup();
   GoalSpec g;
   g.center = {c[0], c[1]};
@@ -146,7 +146,7 @@ TEST(AutoWeights, UnseenLiftDifferenceGivesPositiveWeight)
       make_mesh(*scene, tria);
     else
       GridGenerator::hyper_cube(tria); // one cell: no sibling, no neighbour, no patch
-    Space<2> space(*scene, tria, 1, 1.0);
+    Space<2> space(*scene, tria, 1, Stabilization{1.0, SupgLength::volume, 0.});
     space.setup();
     std::vector<Vector<double>> U(mesh.n_slabs(),
                                   Vector<double>(space.n_dofs() * basis.n_dofs()));
@@ -184,7 +184,7 @@ TEST(Adjoint, TransposedSpaceTimeOperator)
   const auto scene = manufactured();
   Triangulation<2> tria;
   make_mesh(*scene, tria);
-  Space<2> space(*scene, tria, 1, 1.0);
+  Space<2> space(*scene, tria, 1, Stabilization{1.0, SupgLength::volume, 0.});
   space.setup();
   const TemporalBasis basis(2);
   const unsigned int m = basis.n_dofs(), N = 3;
@@ -237,7 +237,7 @@ TEST_P(AdjointGoal, PrimalGoalEqualsAdjointFormWithEqualSpaces)
   const auto scene = manufactured();
   Triangulation<2> tria;
   make_mesh(*scene, tria);
-  Space<2> space(*scene, tria, 2, 1.0);
+  Space<2> space(*scene, tria, 2, Stabilization{1.0, SupgLength::volume, 0.});
   space.setup();
   const TemporalBasis basis(r);
   const TimeMesh mesh = TimeMesh::uniform(0.5, 4);

@@ -113,8 +113,10 @@ struct Problem
   {
     mesh.t[1] = 0.25; // unequal slabs
     make_mesh(tria);
-    galerkin = std::make_unique<Space<2>>(*scene, tria, p, 0.);
-    supg = std::make_unique<Space<2>>(*scene, tria, p, 0.7);
+    galerkin =
+        std::make_unique<Space<2>>(*scene, tria, p, Stabilization{0., SupgLength::volume, 0.});
+    supg =
+        std::make_unique<Space<2>>(*scene, tria, p, Stabilization{0.7, SupgLength::volume, 0.});
     galerkin->setup();
     supg->setup();
   }
@@ -199,7 +201,7 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
       {"scene.name=heat", "scene.variant=poly", "scene.epsilon=0.1"}));
   Triangulation<2> tria;
   make_mesh(tria);
-  Space<2> space(*scene, tria, 2, 0.);
+  Space<2> space(*scene, tria, 2, Stabilization{0., SupgLength::volume, 0.});
   space.setup();
   const TemporalBasis basis(0), basis_hi(1);
   const TimeMesh mesh = TimeMesh::uniform(0.5, 4);
@@ -273,7 +275,8 @@ struct HumpProblem
 
   std::unique_ptr<Scene<2>> scene;
   Triangulation<2> tria;
-  Space<2> primal{*scene, tria, 1, 1.}, adjoint{*scene, tria, 2, 1.};
+  const Stabilization supg{1., SupgLength::volume, 0.};
+  Space<2> primal{*scene, tria, 1, supg}, adjoint{*scene, tria, 2, supg};
   const TemporalBasis basis{1};
   const TimeMesh mesh = TimeMesh::uniform(0.5, 3);
   std::vector<GoalSpec> goals;

@@ -723,7 +723,7 @@ unsigned int hemker_iterations(bool downstream, unsigned int degree, unsigned in
         cell->set_refine_flag(RefinementCase<2>::cut_y);
     tria.execute_coarsening_and_refinement();
   }
-  Space<2> space(*scene, tria, degree, 0.1);
+  Space<2> space(*scene, tria, degree, Stabilization{0.1, SupgLength::volume, 0.});
   space.set_downstream_numbering(downstream);
   space.setup();
   const TemporalBasis basis(r);

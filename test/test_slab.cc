@@ -195,7 +195,7 @@ TEST_P(SlabByDegree, KroneckerEqualsDirectSpaceTimeAssembly)
   const PolyScene scene(r, 0.1);
   Triangulation<2> tria;
   make_mesh(scene, tria);
-  Space<2> space(scene, tria, 2, delta0);
+  Space<2> space(scene, tria, 2, Stabilization{delta0, SupgLength::volume, 0.});
   space.setup();
   const TemporalBasis basis(r);
   SlabOperator<2> op(space, basis, SlabSolverOptions::direct(true));
@@ -245,7 +245,7 @@ TEST_P(ExactnessByDegree, PolynomialInTimeAndInFESpaceIsReproduced)
   const PolyScene scene(r, 0.05);
   Triangulation<2> tria;
   make_mesh(scene, tria);
-  Space<2> space(scene, tria, 2, 1.0);
+  Space<2> space(scene, tria, 2, Stabilization{1.0, SupgLength::volume, 0.});
   space.setup();
   const TemporalBasis basis(r);
   const TimeMesh mesh = TimeMesh::uniform(1.0, 3);
@@ -280,7 +280,8 @@ TEST(Slab, SeparableLoadsAndErrorsEqualPointwiseEvaluation)
   Triangulation<2> tria;
   make_mesh(split, tria);
   tria.refine_global(1);
-  Space<2> a(split, tria, 2, 1.0, true, 0.5), b(pointwise, tria, 2, 1.0, true, 0.5);
+  const Stabilization stab{1.0, SupgLength::streamline, 0.5};
+  Space<2> a(split, tria, 2, stab), b(pointwise, tria, 2, stab);
   a.setup();
   b.setup();
   ASSERT_TRUE(a.delta_depends_on_tau());
@@ -342,7 +343,7 @@ TEST(Slab, SupgBoundedByTauKeepsSmallSlabsStable)
   double max_u[2] = {0, 0};
   for (const double factor : {0., 1.})
   {
-    Space<2> space(*scene, tria, 1, 1.0, true, factor);
+    Space<2> space(*scene, tria, 1, Stabilization{1.0, SupgLength::streamline, factor});
     space.setup();
     if (factor > 0)
       for (const auto &cell : tria.active_cell_iterators())

@@ -12,6 +12,7 @@
 #include "goal/goal_spec.h"
 #include "scene/scene_options.h"
 #include "slab/slab_solver_options.h"
+#include "space/stabilization.h"
 
 #include <iosfwd>
 #include <map>
@@ -20,20 +21,6 @@
 
 namespace anisodwr
 {
-/// discretization.supg_length: the cell length h_K in delta_K = delta0 h_K.
-enum class SupgLength
-{
-  volume,    ///< |K|^(1/d)
-  streamline ///< the length of K along b at its centre
-};
-
-inline const std::vector<Named<SupgLength>> &names(SupgLength)
-{
-  static const std::vector<Named<SupgLength>> table{
-      {SupgLength::volume, "volume"}, {SupgLength::streamline, "streamline"}};
-  return table;
-}
-
 /// study.mode
 enum class StudyMode
 {
@@ -70,13 +57,11 @@ inline const std::vector<Named<StudyRefine>> &names(StudyRefine)
 /// The scene section: the scenes' own options (scene/scene_options.h).
 using SceneSection = SceneOptions;
 
-struct DiscretizationSection
+/// The discretization section: the stabilization (space/stabilization.h) and the meshes.
+struct DiscretizationSection : Stabilization
 {
   unsigned int p = 1;
   unsigned int r = 0;
-  double delta0 = 1.0;
-  SupgLength supg_length = SupgLength::volume;
-  double supg_tau_factor = 1.;
   double growth_limit = 1e4;
   unsigned int initial_refinements = 2;
   unsigned int n_slabs = 5;

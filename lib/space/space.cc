@@ -18,10 +18,8 @@ using namespace dealii;
 
 template <int dim>
 Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria,
-                  unsigned int degree, double delta0, bool streamline_length,
-                  double tau_factor)
-    : scene(scene), delta0(delta0), streamline_length(streamline_length),
-      tau_factor(tau_factor), fe(degree),
+                  unsigned int degree, const Stabilization &stabilization)
+    : scene(scene), stab(stabilization), fe(degree),
       map(1), dofs(tria)
 {
 }
@@ -67,9 +65,10 @@ void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> 
 template <int dim>
 double Space<dim>::unbounded_delta(const typename Triangulation<dim>::cell_iterator &cell) const
 {
+  const double delta0 = stab.delta0;
   if (delta0 == 0.)
     return 0.;
-  if (streamline_length)
+  if (stab.supg_length == SupgLength::streamline)
   {
     // length of the cell along b through its centre: 1 / ||J^{-1} beta||_inf (exact
     // for parallelograms), beta = b/|b| at the centre at t = 0

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "space/stabilization.h"
 
 namespace anisodwr
 {
@@ -31,13 +32,12 @@ struct SpatialMatrices
 template <int dim> class Space
 {
 public:
-  /// SUPG: delta_K = delta0 h_K with h_K = |K|^{1/dim} (doc/method.md §3), or, if
-  /// `streamline_length`, h_K = the length of K along b (for anisotropic cells); if
-  /// tau_factor > 0, delta_K <= tau_factor * tau_n on a slab of length tau_n (the
-  /// stability bound of SUPG with the time derivative in the test function).
+  /// SUPG: delta_K = delta0 h_K with h_K = |K|^{1/dim} (doc/method.md §3), or, with
+  /// SupgLength::streamline, h_K = the length of K along b (for anisotropic cells); if
+  /// supg_tau_factor > 0, delta_K <= supg_tau_factor * tau_n on a slab of length tau_n
+  /// (the stability bound of SUPG with the time derivative in the test function).
   Space(const Scene<dim> &scene, const dealii::Triangulation<dim> &tria,
-        unsigned int degree, double delta0, bool streamline_length = false,
-        double tau_factor = 0.);
+        unsigned int degree, const Stabilization &stabilization);
 
   /// Distributes DoFs, builds constraints and the sparsity pattern (call after
   /// refinement).
@@ -80,20 +80,19 @@ public:
   }
   /// delta0 h_K, before the bound by tau_n.
   double unbounded_delta(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
-  /// min(d, tau_factor * tau) (d if tau_factor == 0).
+  /// min(d, supg_tau_factor * tau) (d if supg_tau_factor == 0).
   double bounded_delta(double d, double tau) const
   {
-    return tau_factor > 0 ? std::min(d, tau_factor * tau) : d;
+    const double f = stab.supg_tau_factor;
+    return f > 0 ? std::min(d, f * tau) : d;
   }
   /// Whether delta_K (and so M, A and the loads) depends on the slab length.
-  bool delta_depends_on_tau() const { return tau_factor > 0 && delta0 > 0; }
+  bool delta_depends_on_tau() const { return stab.supg_tau_factor > 0 && stab.delta0 > 0; }
 
   const Scene<dim> &scene;
 
 private:
-  double delta0;
-  bool streamline_length;
-  double tau_factor;
+  const Stabilization stab;
   bool downstream = false;
   dealii::FE_Q<dim> fe;
   dealii::MappingQ<dim> map;

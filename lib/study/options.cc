@@ -42,10 +42,10 @@ std::unique_ptr<Space<2>> make_space_with(const Parameters &prm, const Scene<2> 
                                           unsigned int degree, double delta0,
                                           double tau_scale)
 {
-  const DiscretizationSection &d = prm.discretization;
-  auto space = std::make_unique<Space<2>>(scene, tria, degree, delta0,
-                                          d.supg_length == SupgLength::streamline,
-                                          d.supg_tau_factor * tau_scale);
+  Stabilization stab = prm.discretization;
+  stab.delta0 = delta0;
+  stab.supg_tau_factor *= tau_scale;
+  auto space = std::make_unique<Space<2>>(scene, tria, degree, stab);
   const DofNumbering numbering = prm.solver.dof_numbering;
   space->set_downstream_numbering(
       numbering == DofNumbering::downstream ||

@@ -1,0 +1,35 @@
+#pragma once
+// The stabilization of the discrete operator: SUPG's delta0, its cell length and its
+// bound by the slab length (doc/method.md §3). Space takes it; the discretization
+// section of a config derives from it. A new stabilization term adds its parameters
+// here.
+#include "base/choice.h"
+
+#include <vector>
+
+namespace anisodwr
+{
+/// discretization.supg_length: the cell length h_K in delta_K = delta0 h_K.
+enum class SupgLength
+{
+  volume,    ///< |K|^(1/d)
+  streamline ///< the length of K along b at its centre
+};
+
+inline const std::vector<Named<SupgLength>> &names(SupgLength)
+{
+  static const std::vector<Named<SupgLength>> table{
+      {SupgLength::volume, "volume"}, {SupgLength::streamline, "streamline"}};
+  return table;
+}
+
+struct Stabilization
+{
+  /// delta_K = delta0 h_K; 0 turns SUPG off
+  double delta0 = 1.0;
+  /// h_K = |K|^(1/d) (volume) or the length of K along b at its centre (streamline)
+  SupgLength supg_length = SupgLength::volume;
+  /// delta_K <= supg_tau_factor * tau_n on a slab of length tau_n; 0: no bound
+  double supg_tau_factor = 1.;
+};
+} // namespace anisodwr
