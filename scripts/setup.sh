@@ -25,5 +25,7 @@ if [ ! -f "$BUILD/CMakeCache.txt" ]; then
   cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
 echo "== building (-j2)"
+start=$(date +%s)
 cmake --build "$BUILD" -j2 -- --no-print-directory | grep -E "error|warning|Linking" || true
 test -x "$BUILD/app/anisodwr" || { echo "build failed" >&2; exit 1; }
+echo "== build: $(($(date +%s) - start)) s"

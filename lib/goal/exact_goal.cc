@@ -71,7 +71,7 @@ Piece make_piece(const F &f, double lo, double hi, double whole, Budget &budget)
 }
 
 /// The sums over the frozen pieces, then over the open ones (largest error first).
-Integral totals(const std::vector<Piece> &frozen, std::priority_queue<Piece> pieces)
+Integral piece_totals(const std::vector<Piece> &frozen, std::priority_queue<Piece> pieces)
 {
   Integral r;
   auto add = [&](const Piece &p)
@@ -107,7 +107,7 @@ Integral integrate(const F &f, double a, double b, double rel_tol, double abs_to
   const double min_width = 1e-13 * (b - a);
   pieces.push(make_piece(f, a, b, gauss(f, a, b, unused, budget), budget));
   // running sums (exact sums are recomputed before stopping)
-  Integral run = totals(frozen, pieces);
+  Integral run = piece_totals(frozen, pieces);
   double frozen_error = 0;
   while (true)
   {
@@ -117,7 +117,7 @@ Integral integrate(const F &f, double a, double b, double rel_tol, double abs_to
     if (run.error <= target || run.error - frozen_error <= 0.1 * target ||
         pieces.empty() || budget.remaining == 0)
     {
-      result = totals(frozen, pieces);
+      result = piece_totals(frozen, pieces);
       if (!std::isfinite(result.value) || !std::isfinite(result.error))
       {
         result.converged = false;

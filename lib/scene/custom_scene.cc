@@ -22,19 +22,19 @@ namespace
 const std::vector<std::string> xyt{"x", "y", "t"};
 const std::vector<std::string> xyt_n{"x", "y", "t", "nx", "ny"};
 
-std::string trim(const std::string &s)
+std::string trim_ws(const std::string &s)
 {
   const auto a = s.find_first_not_of(" \t\n\r"), b = s.find_last_not_of(" \t\n\r");
   return a == std::string::npos ? "" : s.substr(a, b - a + 1);
 }
 
-std::vector<std::string> split(const std::string &s, char sep)
+std::vector<std::string> split_ws(const std::string &s, char sep)
 {
   std::vector<std::string> out;
   std::string item;
   std::istringstream in(s);
   while (std::getline(in, item, sep))
-    out.push_back(trim(item));
+    out.push_back(trim_ws(item));
   if (!s.empty() && s.back() == sep)
     out.push_back("");
   return out;
@@ -226,7 +226,7 @@ void CustomScene::Geometry::read_mesh(const SceneOptions &o, std::string &domain
 
 void CustomScene::Geometry::build(const SceneOptions &o, std::string &domain)
 {
-  if (!trim(o.custom.mesh_file).empty())
+  if (!trim_ws(o.custom.mesh_file).empty())
     read_mesh(o, domain);
   else
   {
@@ -249,7 +249,7 @@ void CustomScene::Geometry::build(const SceneOptions &o, std::string &domain)
   }
   if (coarse.n_active_cells() == 0)
     throw InputError(
-        o.source(trim(o.custom.mesh_file).empty() ? "scene.grid" : "scene.mesh_file") +
+        o.source(trim_ws(o.custom.mesh_file).empty() ? "scene.grid" : "scene.mesh_file") +
         ": the domain " + domain + " has no cells");
   for (const auto &face : coarse.active_face_iterators())
     if (face->at_boundary())
@@ -303,7 +303,7 @@ CustomScene::CustomScene(const SceneOptions &o) : geometry(std::make_unique<Geom
                       o.source("scene.constants"));
   const auto parse = [&](const std::string &text, const std::string &key)
   { return Expression(text, xyt, constants, key, o.source(key)); };
-  const auto parts = split(c.convection, ';');
+  const auto parts = split_ws(c.convection, ';');
   if (parts.size() != 2)
     throw InputError(o.source("scene.convection") + ": invalid value '" + c.convection +
                      "' for key 'scene.convection'; expected two expressions b_x; b_y "
@@ -316,7 +316,7 @@ CustomScene::CustomScene(const SceneOptions &o) : geometry(std::make_unique<Geom
   time_dependent = b[0].uses("t") || b[1].uses("t") || alpha.uses("t");
   read_boundary_data(o, constants);
   read_goals(o);
-  if (!trim(c.exact_solution).empty())
+  if (!trim_ws(c.exact_solution).empty())
   {
     const double length = geometry->box[0].distance(geometry->box[1]);
     exact_solution = std::make_unique<ExpressionSolution>(
@@ -340,14 +340,14 @@ void CustomScene::read_boundary_data(const SceneOptions &o, const Constants &con
     const bool is_dirichlet = key == "scene.dirichlet";
     const std::string &text = is_dirichlet ? o.custom.dirichlet : o.custom.neumann;
     const std::string where = o.source(key);
-    if (trim(text).empty())
+    if (trim_ws(text).empty())
       continue;
-    for (const auto &item : split(text, ';'))
+    for (const auto &item : split_ws(text, ';'))
     {
       const auto colon = item.find(':');
       const std::string id_list = colon == std::string::npos ? "" : item.substr(0, colon);
       const bool ids_ok =
-          !trim(id_list).empty() &&
+          !trim_ws(id_list).empty() &&
           id_list.find_first_not_of("0123456789, \t") == std::string::npos;
       if (!ids_ok)
         throw InputError(where + ": invalid item '" + item + "' in key '" + key +
@@ -355,7 +355,7 @@ void CustomScene::read_boundary_data(const SceneOptions &o, const Constants &con
                          "ids, items separated by ';'");
       const Expression g(item.substr(colon + 1), is_dirichlet ? xyt : xyt_n, constants,
                          key, where);
-      for (const auto &s : split(id_list, ','))
+      for (const auto &s : split_ws(id_list, ','))
       {
         if (s.empty() || s.size() > 9 ||
             s.find_first_not_of("0123456789") != std::string::npos ||
@@ -389,9 +389,9 @@ void CustomScene::read_boundary_data(const SceneOptions &o, const Constants &con
 void CustomScene::read_goals(const SceneOptions &o)
 {
   const std::string key = "scene.goals", where = o.source(key), &text = o.custom.goals;
-  if (trim(text).empty())
+  if (trim_ws(text).empty())
     return;
-  const auto items = split(text, ';');
+  const auto items = split_ws(text, ';');
   for (std::size_t i = 0; i < items.size(); ++i)
   {
     const std::string bad =
@@ -401,8 +401,8 @@ void CustomScene::read_goals(const SceneOptions &o)
     const auto eq = item.find('=');
     if (eq != std::string::npos)
     {
-      g.name = trim(item.substr(0, eq));
-      item = trim(item.substr(eq + 1));
+      g.name = trim_ws(item.substr(0, eq));
+      item = trim_ws(item.substr(eq + 1));
     }
     std::istringstream in(item);
     std::string kind;
@@ -414,7 +414,7 @@ void CustomScene::read_goals(const SceneOptions &o)
     std::string rest;
     std::getline(in, rest);
     std::vector<double> v;
-    for (const auto &s : split(rest, ','))
+    for (const auto &s : split_ws(rest, ','))
     {
       std::size_t used = 0;
       double x = std::nan("");

@@ -35,7 +35,7 @@ using namespace dealii;
 
 namespace
 {
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr double dwr_nan = std::numeric_limits<double>::quiet_NaN();
 
 /// The loop table's copy of the estimator's sums.
 void copy_indicators(const Indicators<2> &ind, LoopRow &row)
@@ -206,7 +206,7 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
                       : std::isnan(goals.front().reference) ? "none"
                                                             : "goal.reference"),
       has_exact(error_reference != "none"),
-      J_exact(goals.size(), nan), marking(marking_options(prm)),
+      J_exact(goals.size(), dwr_nan), marking(marking_options(prm)),
       tria(tria_smoothing<2>(marking)), basis(prm.discretization.r),
       q(prm.adaptivity.adjoint_degree ? prm.adaptivity.adjoint_degree
                                       : 2 * prm.discretization.p)

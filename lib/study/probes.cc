@@ -18,7 +18,7 @@ using namespace dealii;
 
 namespace
 {
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Parameter interval [s0, s1] of the line a + s d (s in [0, L]) inside the convex
 /// polygon of a 2D cell (vertices 0, 1, 3, 2 in counter-clockwise order); false if the
@@ -93,7 +93,7 @@ template <int dim> double LineEvaluator<dim>::value(double s) const
   for (const auto &piece : pieces)
     if (s >= piece.s0 - 1e-14 * L && s <= piece.s1 + 1e-14 * L)
       return value_in(piece, std::min(std::max(s, piece.s0), piece.s1));
-  return nan;
+  return NaN;
 }
 
 template <int dim> std::vector<double> LineEvaluator<dim>::breakpoints() const
@@ -146,7 +146,7 @@ double LineEvaluator<dim>::first_crossing(double level, unsigned int scan) const
       g_prev = g;
     }
   }
-  return nan;
+  return NaN;
 }
 
 template <int dim>
@@ -213,13 +213,13 @@ ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &map
   }
   if (no_bounds)
   {
-    r.u_min = r.u_max = r.overshoot = r.undershoot = r.undershoot_x = r.undershoot_y = nan;
-    r.overshoot_strip = r.undershoot_strip = r.overshoot_box = r.undershoot_box = nan;
+    r.u_min = r.u_max = r.overshoot = r.undershoot = r.undershoot_x = r.undershoot_y = NaN;
+    r.overshoot_strip = r.undershoot_strip = r.overshoot_box = r.undershoot_box = NaN;
   }
   if (!spec.has_strip)
-    r.overshoot_strip = r.undershoot_strip = nan;
+    r.overshoot_strip = r.undershoot_strip = NaN;
   if (!spec.has_box)
-    r.overshoot_box = r.undershoot_box = nan;
+    r.overshoot_box = r.undershoot_box = NaN;
   if (spec.has_layer)
   {
     const LineEvaluator<dim> line(dofs, mapping, u, spec.layer_ray.start,

@@ -42,7 +42,7 @@ struct LevelResult
   std::vector<std::string> vtu_files;
 };
 
-std::string num(double v)
+std::string fmt(double v)
 {
   return json_number(v, 10);
 }
@@ -50,18 +50,18 @@ std::string num(double v)
 std::string level_json(const LevelResult &r)
 {
   std::ostringstream s;
-  s << "{\"level\": " << r.level << ", \"h\": " << num(r.h) << ", \"tau\": " << num(r.tau)
+  s << "{\"level\": " << r.level << ", \"h\": " << fmt(r.h) << ", \"tau\": " << fmt(r.tau)
     << ", \"N_space\": " << r.n_space << ", \"N_t\": " << r.n_t
     << ", \"N_tot\": " << r.n_tot;
   if (r.has_exact)
-    s << ", \"err_L2_T\": " << num(r.err.L2_T) << ", \"err_nodal\": " << num(r.err.nodal)
-      << ", \"err_L2L2\": " << num(r.err.L2L2);
-  s << ", \"memory_estimate_mb\": " << num(r.memory_estimate_mb)
-    << ", \"wall_time\": {\"total\": " << num(r.t_total)
-    << ", \"assemble_spatial\": " << num(r.slab.assemble_spatial)
-    << ", \"assemble_slab\": " << num(r.slab.assemble_slab)
-    << ", \"factorize\": " << num(r.slab.factorize)
-    << ", \"solve\": " << num(r.slab.solve)
+    s << ", \"err_L2_T\": " << fmt(r.err.L2_T) << ", \"err_nodal\": " << fmt(r.err.nodal)
+      << ", \"err_L2L2\": " << fmt(r.err.L2L2);
+  s << ", \"memory_estimate_mb\": " << fmt(r.memory_estimate_mb)
+    << ", \"wall_time\": {\"total\": " << fmt(r.t_total)
+    << ", \"assemble_spatial\": " << fmt(r.slab.assemble_spatial)
+    << ", \"assemble_slab\": " << fmt(r.slab.assemble_slab)
+    << ", \"factorize\": " << fmt(r.slab.factorize)
+    << ", \"solve\": " << fmt(r.slab.solve)
     << "}, \"factorizations\": " << r.slab.n_factorizations << "}";
   return s.str();
 }
@@ -145,8 +145,8 @@ std::string summary_text(const Parameters &prm, const std::vector<LevelResult> &
   f << "  \"config\": " << prm.to_json(2) << ",\n  \"levels\": [";
   for (std::size_t i = 0; i < levels.size(); ++i)
     f << (i ? ",\n    " : "\n    ") << level_json(levels[i]);
-  f << "\n  ],\n  \"wall_time\": " << num(wall)
-    << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << ",\n  "
+  f << "\n  ],\n  \"wall_time\": " << fmt(wall)
+    << ",\n  \"peak_memory_mb\": " << fmt(peak_memory_mb()) << ",\n  "
     << solver_totals_json() << "\n}\n";
   return f.str();
 }

@@ -15,7 +15,7 @@ using namespace dealii;
 
 namespace
 {
-std::string num(double v)
+std::string fmt12(double v)
 {
   return json_number(v, 12);
 }
@@ -63,8 +63,8 @@ void measure_time_error(const std::function<std::unique_ptr<Space<2>>(double)> &
   }
   std::cout << "  " << opt.label << ": temporal error check, J_w with " << mesh.n_slabs()
             << ", " << 2 * mesh.n_slabs() << ", " << 4 * mesh.n_slabs()
-            << " slabs: " << num(J[0][0]) << ", " << num(J[0][1]) << ", " << num(J[0][2])
-            << std::endl;
+            << " slabs: " << fmt12(J[0][0]) << ", " << fmt12(J[0][1]) << ", "
+            << fmt12(J[0][2]) << std::endl;
   std::tie(row.err_tau, row.err_tau_order) = richardson(J[0]);
   if (std::isnan(row.err_tau))
     std::cout << "  " << opt.label
