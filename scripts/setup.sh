@@ -20,9 +20,14 @@ if [ -n "$missing" ]; then
 fi
 
 BUILD=${ANISODWR_BUILD_DIR:-$ROOT/build}
+# The library compiles as unity batches of 7 sources (about a minute less on a fresh
+# clone; ANISODWR_UNITY=0 configures one object per source, for editing a few files).
+UNITY=ON
+[ "${ANISODWR_UNITY:-1}" = 0 ] && UNITY=OFF
 if [ ! -f "$BUILD/CMakeCache.txt" ]; then
   echo "== configuring (Release) in $BUILD"
-  cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=$UNITY \
+    -DCMAKE_UNITY_BUILD_BATCH_SIZE=7 >/dev/null
 fi
 echo "== building (-j2)"
 start=$(date +%s)
