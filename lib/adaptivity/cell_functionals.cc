@@ -25,7 +25,8 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
   Vector<double> &c = scratch[0], &ct = scratch[1];
   c.reinit(np, true);
   ct.reinit(np, true);
-  std::vector<double> a(load_terms.size());
+  std::vector<double> &a = load_factors;
+  a.resize(load_terms.size());
   for (unsigned int m = 0; m < g.size(); ++m)
   {
     const double t = t0 + g[m] * tau, wt = tau * omega[m];

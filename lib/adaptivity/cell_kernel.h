@@ -148,6 +148,7 @@ private:
   bool separable_load = false;
   std::vector<LoadTerm<dim>> load_terms;
   std::vector<std::vector<double>> load_at_q; // [j][q]
+  mutable std::vector<double> load_factors;    // a_j(t) at the current Gauss point
   /// f at quadrature point q and time t, with a[j] = a_j(t) (separable_load)
   double load(unsigned int q, double t, const std::vector<double> &a) const;
   void build_adjoint_matrices();
