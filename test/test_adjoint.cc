@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <sstream>
 
 using namespace anisodwr;
 using namespace dealii;
@@ -34,22 +35,35 @@ void make_mesh(const Scene<2> &scene, Triangulation<2> &tria)
   tria.execute_coarsening_and_refinement();
 }
 
+/// Every registered goal kind at its example location, at T (weight 1) and over I
+/// (weight 0.5), and an exact point value (Dirac) over I.
 std::vector<GoalSpec> goals()
 {
-  GoalSpec a, b, c;
-  a.name = "point_T";
-  a.center = {0.4, 0.55};
-  a.radius = 0.15;
-  b.name = "mean_I";
-  b.kind = GoalKind::mean;
-  b.over_time = true;
-  b.lower = {0.1, 0.2};
-  b.upper = {0.6, 0.7};
-  b.weight = 0.5;
+  const auto scene = manufactured();
+  std::vector<GoalSpec> out;
+  for (const GoalType *type : goal_types())
+    for (const bool over_time : {false, true})
+    {
+      GoalSpec g;
+      g.kind = type->name();
+      g.name = type->name() + (over_time ? "_I" : "_T");
+      g.over_time = over_time;
+      g.weight = over_time ? 0.5 : 1.;
+      if (type->has_radius())
+        g.radius = 0.15;
+      std::vector<double> v;
+      std::istringstream in(type->example());
+      for (std::string x; std::getline(in, x, ',');)
+        v.push_back(std::stod(x));
+      type->set_location(v, *scene, type->name() + " example: ", g);
+      out.push_back(g);
+    }
+  GoalSpec c;
   c.name = "dirac_I";
   c.center = {0.3, 0.3};
   c.over_time = true;
-  return {a, b, c};
+  out.push_back(c);
+  return out;
 }
 } // namespace
 
@@ -159,7 +173,7 @@ TEST(AutoWeights, UnseenLiftDifferenceGivesPositiveWeight)
           evaluate_goal(assemble_goal_vectors(space, {unweighted(g)}), mesh, basis, U);
       const double d = lift_difference(space, g, mesh, basis, U);
       const double w = signed_goal_weight(d, J, auto_weight_unseen);
-      if (!patches || (g.kind == GoalKind::point && g.radius == 0))
+      if (!patches || (g.kind == "point" && g.radius == 0))
       {
         // No patch (on the refined mesh the Dirac's cell lost its patch when its
         // sibling was cut in x): the lift changes nothing.

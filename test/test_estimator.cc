@@ -211,11 +211,11 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
   const auto U_hi = march_primal(space, mesh, basis_hi, op_hi, MarchOptions{});
   GoalSpec at_T, over_I;
   at_T.name = "mean_T";
-  at_T.kind = GoalKind::mean;
+  at_T.kind = "mean";
   at_T.lower = {0.25, 0.25}; // rectangles on cell faces: both goal representations
   at_T.upper = {0.75, 0.75}; // integrate them exactly
   over_I.name = "mean_I";
-  over_I.kind = GoalKind::mean;
+  over_I.kind = "mean";
   over_I.lower = {0.5, 0.};
   over_I.upper = {1., 0.5};
   over_I.over_time = true;

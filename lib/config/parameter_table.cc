@@ -1,6 +1,7 @@
 #include "config/parameter_table.h"
 
 #include "base/parse_number.h"
+#include "goal/goal_type.h"
 
 #include <sstream>
 #include <stdexcept>
@@ -349,13 +350,9 @@ std::vector<Entry> goal_entries()
   using S = GoalSection;
   const auto m = [](auto member) { return at(&Parameters::goal, member); };
   return {
-      {"goal", "kind", "scene", m(&S::kind), by_name,
-       "scene: the scene's goals (moving_hump: mollified u(x_e1,T), u(x_e2,T); "
-       "boundary_layer: mean of u(T) over (0.5,1)x(0,1); others: u(0.5,0.5,T)); "
-       "point: mollified point values at goal.locations; mean: means over the rectangles "
-       "in goal.locations."},
-      {"goal", "locations", "", m(&S::locations), text,
-       "point: 'x,y; x,y; ...'; mean: 'x0,y0,x1,y1; ...' (lower-left, upper-right)."},
+      {"goal", "kind", "scene", m(&S::kind),
+       std::make_shared<P::Selection>(goal_kind_choices("|")), goal_kind_doc()},
+      {"goal", "locations", "", m(&S::locations), text, goal_locations_doc()},
       {"goal", "over_time", "false", m(&S::over_time), boolean,
        "Custom goals: integrate over I (true) or evaluate at T (false)."},
       {"goal", "radius", "0.01", m(&S::radius), real(0.),

@@ -2,6 +2,7 @@
 // Linear goal functionals J(u) = int_I j_t(u(t)) dt + j_T(u(T)) (doc/method.md §4) and
 // the mollifier delta_{s,c}(x) = C exp(1 - 1/(1 - |x-c|^2/s^2)) with int delta = 1.
 #include "goal/goal_spec.h"
+#include "goal/goal_type.h"
 #include "space/space.h"
 #include "time/temporal_basis.h"
 #include "time/time_mesh.h"
@@ -37,10 +38,9 @@ public:
                    dealii::Vector<double> &j) const;
 
 private:
-  struct Part;
-  const dealii::Mapping<dim> &mapping;
   const dealii::FiniteElement<dim> &fe;
-  std::vector<std::shared_ptr<const Part>> parts;
+  /// each goal's part and weight
+  std::vector<std::pair<std::shared_ptr<const GoalPart<dim>>, double>> parts;
 };
 
 /// j_i = j(phi_i) for the spatial functional of the goal.

@@ -1,7 +1,5 @@
 #pragma once
 // The description of one goal functional (doc/method.md §4), as read from the config.
-#include "base/choice.h"
-
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -9,25 +7,10 @@
 
 namespace anisodwr
 {
-/// goal.kind, and the kind of one goal (point or mean).
-enum class GoalKind
-{
-  scene, ///< goal.kind only: the scene's own goals
-  point, ///< mollified point value (s = 0: Dirac)
-  mean   ///< mean over a rectangle
-};
-
-inline const std::vector<Named<GoalKind>> &names(GoalKind)
-{
-  static const std::vector<Named<GoalKind>> table{
-      {GoalKind::scene, "scene"}, {GoalKind::point, "point"}, {GoalKind::mean, "mean"}};
-  return table;
-}
-
 struct GoalSpec
 {
   std::string name;
-  GoalKind kind = GoalKind::point; ///< point or mean
+  std::string kind = "point"; ///< the name of its GoalType (goal/goal_type.h)
   bool over_time = false; ///< true: int_I j(u(t)) dt; false: j(u(T))
   std::vector<double> center;       ///< point goals
   double radius = 0;                ///< mollifier radius s
@@ -63,8 +46,8 @@ constexpr double auto_weight_unseen = 1e-8;
 /// and goal.weights came from (a config file's path, "--set" or "default").
 struct GoalInput
 {
-  GoalKind kind = GoalKind::scene;
-  std::string locations = ""; ///< "x,y; ..." (point) or "x0,y0,x1,y1; ..." (mean)
+  std::string kind = "scene"; ///< scene or the name of a GoalType
+  std::string locations = ""; ///< the kind's locations, separated by ";"
   bool over_time = false;
   double radius = 0.01;
   std::string weights = "1"; ///< auto, one number or one per goal

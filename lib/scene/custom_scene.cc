@@ -1,6 +1,7 @@
 #include "scene/custom_scene.h"
 
 #include "base/errors.h"
+#include "goal/goal_type.h"
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
@@ -407,10 +408,19 @@ void CustomScene::read_goals(const SceneOptions &o)
     std::istringstream in(item);
     std::string kind;
     in >> kind;
-    if (kind != "point" && kind != "mean")
-      throw InputError(bad +
-                       "expected [name =] point x, y or [name =] mean x0, y0, x1, y1");
-    g.kind = kind == "point" ? GoalKind::point : GoalKind::mean;
+    const GoalType *type = nullptr;
+    for (const GoalType *t : goal_types())
+      if (t->name() == kind)
+        type = t;
+    if (!type)
+    {
+      std::string forms;
+      for (const GoalType *t : goal_types())
+        forms += (forms.empty() ? "" : " or ") + std::string("[name =] ") + t->name() +
+                 " " + t->syntax();
+      throw InputError(bad + "expected " + forms);
+    }
+    g.kind = kind;
     std::string rest;
     std::getline(in, rest);
     std::vector<double> v;
@@ -429,8 +439,8 @@ void CustomScene::read_goals(const SceneOptions &o)
         throw InputError(bad + "'" + s + "' is not a finite number");
       v.push_back(x);
     }
-    if (v.size() != (g.kind == GoalKind::point ? 2u : 4u))
-      throw InputError(bad + "expected " + (g.kind == GoalKind::point ? "2" : "4") +
+    if (v.size() != type->n_numbers())
+      throw InputError(bad + "expected " + std::to_string(type->n_numbers()) +
                        " comma-separated numbers after '" + kind + "'");
     if (g.name.empty())
       g.name = kind + "_" + std::to_string(i + 1);
@@ -438,21 +448,7 @@ void CustomScene::read_goals(const SceneOptions &o)
                                  "0123456789_") != std::string::npos)
       throw InputError(bad + "a goal name consists of letters, digits and _");
     g.over_time = o.custom.goals_over_time;
-    if (g.kind == GoalKind::point)
-    {
-      g.center = v;
-      if (!contains(Point<2>(v[0], v[1])))
-        throw InputError(bad + "the point lies outside the domain " + domain);
-    }
-    else
-    {
-      g.lower = {v[0], v[1]};
-      g.upper = {v[2], v[3]};
-      if (!(v[2] > v[0] && v[3] > v[1]))
-        throw InputError(bad + "expected x0, y0, x1, y1 with x1 > x0, y1 > y0");
-      if (!contains_box(Point<2>(v[0], v[1]), Point<2>(v[2], v[3])))
-        throw InputError(bad + "the rectangle is not inside the domain " + domain);
-    }
+    type->set_location(v, *this, bad, g);
     goals.push_back(g);
   }
 }
@@ -524,7 +520,7 @@ std::vector<GoalSpec> CustomScene::default_goals(double radius) const
   }
   std::vector<GoalSpec> out = goals;
   for (auto &g : out)
-    if (g.kind == GoalKind::point)
+    if (goal_type(g.kind).has_radius())
       g.radius = radius;
   return out;
 }

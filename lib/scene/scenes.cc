@@ -271,7 +271,7 @@ std::vector<GoalSpec> BoundaryLayer::default_goals(double) const
 {
   GoalSpec g;
   g.name = "mean_T";
-  g.kind = GoalKind::mean;
+  g.kind = "mean";
   g.lower = {0.5, 0.};
   g.upper = {1., 1.};
   return {g};

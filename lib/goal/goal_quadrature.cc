@@ -1,0 +1,121 @@
+#include "goal/goal_quadrature.h"
+
+#include <deal.II/base/quadrature_lib.h>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+template <int dim>
+double DensityGoalPart<dim>::edge_length(const CellIterator &cell, unsigned int d)
+{
+  double length = 0;
+  for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+    if (!(v & (1u << d)))
+      length = std::max(length, cell->vertex(v).distance(cell->vertex(v | (1u << d))));
+  return length;
+}
+
+template <int dim>
+Quadrature<dim> DensityGoalPart<dim>::tensor_rule(const Quadrature<1> &q0,
+                                                  const Quadrature<1> &q1)
+{
+  static_assert(dim == 2, "goal quadrature: tensor rule for dim = 2");
+  std::vector<Point<dim>> points;
+  std::vector<double> weights;
+  points.reserve(q0.size() * q1.size());
+  weights.reserve(q0.size() * q1.size());
+  for (unsigned int j = 0; j < q1.size(); ++j)
+    for (unsigned int i = 0; i < q0.size(); ++i)
+    {
+      points.emplace_back(q0.point(i)[0], q1.point(j)[0]);
+      weights.push_back(q0.weight(i) * q1.weight(j));
+    }
+  return Quadrature<dim>(points, weights);
+}
+
+template <int dim> Quadrature<1> DensityGoalPart<dim>::gauss_on(double lo, double hi) const
+{
+  const QGauss<1> base(fe.degree + 2);
+  std::vector<Point<1>> points(base.size());
+  std::vector<double> weights(base.size());
+  for (unsigned int i = 0; i < base.size(); ++i)
+  {
+    points[i][0] = lo + (hi - lo) * base.point(i)[0];
+    weights[i] = (hi - lo) * base.weight(i);
+  }
+  return Quadrature<1>(points, weights);
+}
+
+template <int dim> FEValues<dim> &DensityGoalPart<dim>::fe_values(const SubCells &n) const
+{
+  auto &v = values[n];
+  if (!v)
+  {
+    const QGauss<1> base(fe.degree + 2);
+    v = std::make_unique<FEValues<dim>>(
+        mapping, fe, tensor_rule(QIterated<1>(base, n[0]), QIterated<1>(base, n[1])),
+        update_values | update_quadrature_points | update_JxW_values);
+  }
+  return *v;
+}
+
+template <int dim>
+bool DensityGoalPart<dim>::add_cell_vector(const CellIterator &cell, double weight,
+                                           Vector<double> &j) const
+{
+  if (!meets(cell))
+    return false;
+  bool nonzero = false;
+  const auto add = [&](FEValues<dim> &fv)
+  {
+    fv.reinit(cell);
+    for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
+    {
+      const double w = weight * density(fv.quadrature_point(q)) * fv.JxW(q);
+      if (w != 0.)
+      {
+        nonzero = true;
+        for (unsigned int l = 0; l < j.size(); ++l)
+          j(l) += w * fv.shape_value(l, q);
+      }
+    }
+  };
+  bool capped = false, empty = false;
+  const SubCells n = sub_cells(cell, capped);
+  Rule q;
+  if (own_rule(cell, n, capped, q, empty))
+  {
+    if (empty)
+      return false;
+  }
+  else
+  {
+    const QGauss<1> base(fe.degree + 2);
+    if (n[0] * n[1] * base.size() * base.size() <= max_rule_points)
+    {
+      add(fe_values(n));
+      return nonzero;
+    }
+    q[0] = QIterated<1>(base, n[0]);
+    q[1] = QIterated<1>(base, n[1]);
+  }
+  // A rule of a small support on a coarse cell can hold 10^5-10^6 points: it is
+  // evaluated in slices of at most max_rule_points, so that its FEValues stay small.
+  const Quadrature<1> &q0 = q[0], &q1 = q[1];
+  const unsigned int slice = std::max<unsigned int>(1, max_rule_points / q0.size());
+  for (unsigned int k0 = 0; k0 < q1.size(); k0 += slice)
+  {
+    const unsigned int k1 = std::min<unsigned int>(q1.size(), k0 + slice);
+    const Quadrature<1> part_q1(
+        std::vector<Point<1>>(q1.get_points().begin() + k0, q1.get_points().begin() + k1),
+        std::vector<double>(q1.get_weights().begin() + k0, q1.get_weights().begin() + k1));
+    FEValues<dim> fv(mapping, fe, tensor_rule(q0, part_q1),
+                     update_values | update_quadrature_points | update_JxW_values);
+    add(fv);
+  }
+  return nonzero;
+}
+
+template class DensityGoalPart<2>;
+} // namespace anisodwr

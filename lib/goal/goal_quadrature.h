@@ -1,0 +1,67 @@
+#pragma once
+// The cell vectors of goals with a density (internal to lib/goal/): j(phi_l) =
+// int density phi_l dx by iterated Gauss rules on sub-cells of each cell, with the
+// FEValues of each sub-cell count built once.
+#include "goal/goal_type.h"
+
+#include <deal.II/base/quadrature.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <array>
+#include <map>
+#include <memory>
+
+namespace anisodwr
+{
+/// The largest quadrature rule of a goal on one cell whose FEValues are built at once
+/// (and cached per sub-cell count); larger ones are evaluated in slices.
+constexpr unsigned int max_rule_points = 4096;
+
+/// A goal int density(x) u(x) dx. A kind says which cells it meets, its density, the
+/// sub-cells of a cell and, where an iterated rule is not the best one, a rule of its
+/// own (clipped to the support, or exact on a box).
+template <int dim> class DensityGoalPart : public GoalPart<dim>
+{
+public:
+  using CellIterator = typename dealii::Triangulation<dim>::active_cell_iterator;
+  using SubCells = std::array<unsigned int, dim>;
+  using Rule = std::array<dealii::Quadrature<1>, dim>;
+
+  DensityGoalPart(const dealii::Mapping<dim> &mapping, const dealii::FiniteElement<dim> &fe)
+      : mapping(mapping), fe(fe)
+  {
+  }
+  bool add_cell_vector(const CellIterator &cell, double weight,
+                       dealii::Vector<double> &j) const override;
+
+  /// The longest edge of `cell` along unit direction d (vertices v and v + 2^d).
+  static double edge_length(const CellIterator &cell, unsigned int d);
+  /// The tensor product of q0 (index running fastest) and q1, built point by point:
+  /// deal.II's tensor-product constructor asserts (Debug) that the weights sum to 1,
+  /// which a clipped rule or a slice of a rule does not.
+  static dealii::Quadrature<dim> tensor_rule(const dealii::Quadrature<1> &q0,
+                                             const dealii::Quadrature<1> &q1);
+  /// The Gauss rule of the part's degree (fe.degree + 2) mapped to [lo, hi].
+  dealii::Quadrature<1> gauss_on(double lo, double hi) const;
+
+protected:
+  virtual bool meets(const CellIterator &cell) const = 0;
+  virtual double density(const dealii::Point<dim> &x) const = 0;
+  /// Sub-cells along each unit direction of `cell`; `capped` tells whether a cap kept
+  /// them coarser than the density wants.
+  virtual SubCells sub_cells(const CellIterator &cell, bool &capped) const = 0;
+  /// A rule of the kind's own for `cell` with sub-cells n: true with the 1D rules per
+  /// direction in `rule`, or with `empty` set where the support misses the cell; false
+  /// where the iterated Gauss rule on the sub-cells is to be used.
+  virtual bool own_rule(const CellIterator &cell, const SubCells &n, bool capped,
+                        Rule &rule, bool &empty) const = 0;
+
+  const dealii::Mapping<dim> &mapping;
+  const dealii::FiniteElement<dim> &fe;
+
+private:
+  dealii::FEValues<dim> &fe_values(const SubCells &n) const;
+  /// FEValues on iterated Gauss rules, one per number of sub-cells (built on demand)
+  mutable std::map<SubCells, std::unique_ptr<dealii::FEValues<dim>>> values;
+};
+} // namespace anisodwr
