@@ -7,15 +7,15 @@ namespace anisodwr
 using namespace dealii;
 
 template <int dim>
-LocalGoal<dim>::LocalGoal(const Mapping<dim> &mapping, const FiniteElement<dim> &fe,
-                          const Triangulation<dim> &tria,
+LocalGoal<dim>::LocalGoal(const Scene<dim> &scene, const Mapping<dim> &mapping,
+                          const FiniteElement<dim> &fe, const Triangulation<dim> &tria,
                           const std::vector<GoalSpec> &goals, bool over_time)
     : fe(fe)
 {
   static_assert(dim == 2, "the goal kinds are implemented in 2D");
   for (const auto &goal : goals)
-    if (goal.over_time == over_time)
-      parts.emplace_back(goal_type(goal.kind).part(goal, mapping, fe, tria), goal.weight);
+    if (auto part = goal_type(goal.kind).part(goal, scene, mapping, fe, tria, over_time))
+      parts.emplace_back(std::move(part), goal.weight);
 }
 
 template <int dim>
@@ -31,15 +31,15 @@ bool LocalGoal<dim>::cell_vector(
 }
 
 template <int dim>
-void assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal,
+bool assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal, bool over_time,
                           Vector<double> &j)
 {
-  GoalSpec unit = goal;
-  unit.weight = 1;
-  const LocalGoal<dim> local(space.mapping(), space.finite_element(),
-                             space.dof_handler().get_triangulation(), {unit},
-                             goal.over_time);
+  const LocalGoal<dim> local(space.scene, space.mapping(), space.finite_element(),
+                             space.dof_handler().get_triangulation(), {unweighted(goal)},
+                             over_time);
   j.reinit(space.n_dofs());
+  if (local.empty())
+    return false;
   Vector<double> jc;
   std::vector<types::global_dof_index> idx(space.finite_element().n_dofs_per_cell());
   for (const auto &cell : space.dof_handler().active_cell_iterators())
@@ -49,6 +49,14 @@ void assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal,
       for (unsigned int i = 0; i < idx.size(); ++i)
         j(idx[i]) += jc(i);
     }
+  return true;
+}
+
+template <int dim>
+void assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal,
+                          Vector<double> &j)
+{
+  assemble_goal_vector(space, goal, goal.over_time, j);
 }
 
 template <int dim>
@@ -59,11 +67,15 @@ GoalVectors assemble_goal_vectors(const Space<dim> &space,
   Vector<double> j;
   for (const auto &goal : goals)
   {
-    assemble_goal_vector(space, goal, j);
-    Vector<double> &target = goal.over_time ? g.over_time : g.at_end;
-    if (target.size() == 0)
-      target.reinit(space.n_dofs());
-    target.add(goal.weight, j);
+    for (const bool over_time : {true, false})
+      if (assemble_goal_vector(space, goal, over_time, j))
+      {
+        Vector<double> &target = over_time ? g.over_time : g.at_end;
+        if (target.size() == 0)
+          target.reinit(space.n_dofs());
+        target.add(goal.weight, j);
+      }
+    g.offset += goal.weight * goal_type(goal.kind).offset(space, unweighted(goal));
   }
   return g;
 }
@@ -96,7 +108,7 @@ void slab_goal_rhs(const GoalVectors &j, const TimeMesh &mesh, const TemporalBas
 double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh,
                      const TemporalBasis &basis, const std::vector<Vector<double>> &U)
 {
-  double J = 0;
+  double J = j.offset;
   Vector<double> rhs;
   for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
   {
@@ -107,6 +119,8 @@ double evaluate_goal(const GoalVectors &j, const TimeMesh &mesh,
 }
 
 template class LocalGoal<2>;
+template bool assemble_goal_vector<2>(const Space<2> &, const GoalSpec &, bool,
+                                      Vector<double> &);
 template void assemble_goal_vector<2>(const Space<2> &, const GoalSpec &,
                                       Vector<double> &);
 template GoalVectors assemble_goal_vectors<2>(const Space<2> &,

@@ -29,9 +29,9 @@ double mollifier(const dealii::Point<dim> &x, const dealii::Point<dim> &c, doubl
 template <int dim> class LocalGoal
 {
 public:
-  LocalGoal(const dealii::Mapping<dim> &mapping, const dealii::FiniteElement<dim> &fe,
-            const dealii::Triangulation<dim> &tria, const std::vector<GoalSpec> &goals,
-            bool over_time);
+  LocalGoal(const Scene<dim> &scene, const dealii::Mapping<dim> &mapping,
+            const dealii::FiniteElement<dim> &fe, const dealii::Triangulation<dim> &tria,
+            const std::vector<GoalSpec> &goals, bool over_time);
   bool empty() const { return parts.empty(); }
   /// j on `cell` (zero outside the goals' support). Returns false if j is zero.
   bool cell_vector(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
@@ -43,15 +43,22 @@ private:
   std::vector<std::pair<std::shared_ptr<const GoalPart<dim>>, double>> parts;
 };
 
-/// j_i = j(phi_i) for the spatial functional of the goal.
+/// j_i = j(phi_i) for the spatial functional of the goal's part over I (over_time) or
+/// at T (weight not applied). Returns false, with j zero, if the goal has no such part.
+template <int dim>
+bool assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal, bool over_time,
+                          dealii::Vector<double> &j);
+/// The same for the part of the goal's own GoalSpec::over_time.
 template <int dim>
 void assemble_goal_vector(const Space<dim> &space, const GoalSpec &goal,
                           dealii::Vector<double> &j);
 
-/// The split of a (weighted sum of) goal(s) into its time-integrated and end-time parts.
+/// The split of a (weighted sum of) goal(s) into its time-integrated and end-time parts
+/// and the constant of the affine ones: J(u) = int_I j_t(u) dt + j_T(u(T)) + offset.
 struct GoalVectors
 {
   dealii::Vector<double> over_time, at_end; ///< empty if the part is absent
+  double offset = 0;
 };
 
 template <int dim>

@@ -49,11 +49,11 @@ std::vector<double> numbers(const std::string &s, const std::string &key, unsign
                        x + "' " + underflow_text());
     if (status != NumberStatus::ok)
       throw InputError(source + ": invalid value '" + s + "' in key '" + key +
-                       "'; expected " + std::to_string(n) +
+                       "'; expected " + (n > 0 ? std::to_string(n) : "one or more") +
                        " comma-separated finite numbers");
     v.push_back(value);
   }
-  if (v.size() != n)
+  if (n > 0 && v.size() != n)
     throw InputError(source + ": invalid value '" + s + "' in key '" + key +
                      "'; expected " + std::to_string(n) +
                      " comma-separated numbers, got " + std::to_string(v.size()));
@@ -92,6 +92,54 @@ void set_references(const GoalInput &in, const Scene<2> &scene,
 }
 } // namespace
 
+namespace
+{
+/// One location of goal.locations, "[name =] [kind] numbers" (kind: goal.kind if
+/// absent), as the goal number i + 1.
+GoalSpec parse_location(const std::string &location, std::size_t i, const GoalInput &in,
+                        const Scene<2> &scene)
+{
+  const std::string where = in.locations_source;
+  std::string item = location;
+  GoalSpec g;
+  g.kind = in.kind;
+  const auto trim = [](const std::string &t)
+  {
+    const auto a = t.find_first_not_of(" \t"), b = t.find_last_not_of(" \t");
+    return a == std::string::npos ? std::string() : t.substr(a, b - a + 1);
+  };
+  if (const auto eq = item.find('='); eq != std::string::npos)
+  {
+    g.name = trim(item.substr(0, eq));
+    item = trim(item.substr(eq + 1));
+    if (g.name.empty() ||
+        g.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                 "0123456789_") != std::string::npos)
+      throw InputError(where + ": invalid goal name '" + g.name +
+                       "' in key 'goal.locations'; a goal name consists of letters, "
+                       "digits and _");
+  }
+  const auto space = item.find_first_of(" \t");
+  for (const GoalType *t : goal_types())
+    if (space != std::string::npos && item.substr(0, space) == t->name())
+    {
+      g.kind = t->name();
+      item = trim(item.substr(space + 1));
+    }
+  const GoalType &type = goal_type(g.kind);
+  if (g.name.empty())
+    g.name = g.kind + "_" + std::to_string(i + 1);
+  g.over_time = in.over_time;
+  if (type.has_radius())
+    g.radius = in.radius;
+  type.set_location(numbers(item, "goal.locations", type.n_numbers(), where), scene,
+                    where + ": invalid " + type.noun() + " '" + item +
+                        "' in key 'goal.locations'; ",
+                    g);
+  return g;
+}
+} // namespace
+
 std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
 {
   const std::string where = in.locations_source;
@@ -100,26 +148,13 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
     goals = scene.default_goals(in.radius);
   else
   {
-    const GoalType &type = goal_type(in.kind);
     const auto items = split(in.locations, ';');
     if (in.locations.empty() || items.empty())
       throw InputError(where + ": key 'goal.locations' is empty; goal.kind = " + in.kind +
-                       " needs at least one location (" + type.syntax() + ")");
+                       " needs at least one location (" + goal_type(in.kind).syntax() +
+                       ")");
     for (std::size_t i = 0; i < items.size(); ++i)
-    {
-      GoalSpec g;
-      g.kind = in.kind;
-      g.over_time = in.over_time;
-      g.name = in.kind + "_" + std::to_string(i + 1);
-      if (type.has_radius())
-        g.radius = in.radius;
-      type.set_location(numbers(items[i], "goal.locations", type.n_numbers(), where),
-                        scene,
-                        where + ": invalid " + type.noun() + " '" + items[i] +
-                            "' in key 'goal.locations'; ",
-                        g);
-      goals.push_back(g);
-    }
+      goals.push_back(parse_location(items[i], i, in, scene));
   }
   // a mollifier wider than the domain is no point goal (and makes J a domain mean)
   const auto box = scene.bounding_box();

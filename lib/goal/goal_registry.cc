@@ -7,10 +7,11 @@ namespace anisodwr
 {
 const GoalType &point_goal(); // goal/point_goal.cc
 const GoalType &mean_goal();  // goal/mean_goal.cc
+const GoalType &flux_goal();  // goal/flux_goal.cc
 
 const std::vector<const GoalType *> &goal_types()
 {
-  static const std::vector<const GoalType *> table{&point_goal(), &mean_goal()};
+  static const std::vector<const GoalType *> table{&point_goal(), &mean_goal(), &flux_goal()};
   return table;
 }
 

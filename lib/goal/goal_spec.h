@@ -15,6 +15,7 @@ struct GoalSpec
   std::vector<double> center;       ///< point goals
   double radius = 0;                ///< mollifier radius s
   std::vector<double> lower, upper; ///< mean goals: the rectangle
+  std::vector<unsigned int> boundary_ids; ///< flux goals: the boundary Gamma
   double weight = 1;
   /// goal.reference: the goal's reference value and its uncertainty (NaN: none given;
   /// uncertainty 0 where the value was given without one)

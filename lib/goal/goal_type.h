@@ -55,7 +55,7 @@ public:
   /// The syntax of one location ("x,y") and an example inside the unit square.
   virtual std::string syntax() const = 0;
   virtual std::string example() const = 0;
-  /// How many numbers one location has.
+  /// How many numbers one location has (0: one or more).
   virtual unsigned int n_numbers() const = 0;
   /// Whether goal.radius applies to the kind.
   virtual bool has_radius() const { return false; }
@@ -66,11 +66,16 @@ public:
   virtual void set_location(const std::vector<double> &numbers, const Scene<2> &scene,
                             const std::string &bad, GoalSpec &g) const = 0;
 
-  /// The goal `g` evaluated cell by cell for `fe` on `tria`.
+  /// The part of J(u) = int_I j_t(u(t)) dt + j_T(u(T)) + c of goal `g` over I
+  /// (over_time: j_t) or at T (j_T), evaluated cell by cell for `fe` on `tria`; null
+  /// if the goal has no such part (a point or mean goal has the part of its
+  /// GoalSpec::over_time only).
   virtual std::unique_ptr<GoalPart<2>>
-  part(const GoalSpec &g, const dealii::Mapping<2, 2> &mapping,
-       const dealii::FiniteElement<2, 2> &fe,
-       const dealii::Triangulation<2> &tria) const = 0;
+  part(const GoalSpec &g, const Scene<2> &scene, const dealii::Mapping<2, 2> &mapping,
+       const dealii::FiniteElement<2, 2> &fe, const dealii::Triangulation<2> &tria,
+       bool over_time) const = 0;
+  /// The constant c of an affine goal on the mesh of `space` (0 for a linear one).
+  virtual double offset(const Space<2> &, const GoalSpec &) const { return 0.; }
 
   /// j(u(t)) of the scene's exact solution u, by the nested integrals `n` (their
   /// outer and inner integrals over the goal's support clipped to the scene's box).

@@ -133,10 +133,12 @@ public:
                        " of scene '" + scene.name() + "'");
   }
 
-  std::unique_ptr<GoalPart<2>> part(const GoalSpec &g, const Mapping<2> &mapping,
-                                    const FiniteElement<2> &fe,
-                                    const Triangulation<2> &) const override
+  std::unique_ptr<GoalPart<2>> part(const GoalSpec &g, const Scene<2> &,
+                                    const Mapping<2> &mapping, const FiniteElement<2> &fe,
+                                    const Triangulation<2> &, bool over_time) const override
   {
+    if (g.over_time != over_time)
+      return nullptr;
     return std::make_unique<MeanPart>(g, mapping, fe);
   }
 

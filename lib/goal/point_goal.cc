@@ -199,10 +199,12 @@ public:
                        " of scene '" + scene.name() + "'");
   }
 
-  std::unique_ptr<GoalPart<2>> part(const GoalSpec &g, const Mapping<2> &mapping,
-                                    const FiniteElement<2> &fe,
-                                    const Triangulation<2> &tria) const override
+  std::unique_ptr<GoalPart<2>> part(const GoalSpec &g, const Scene<2> &,
+                                    const Mapping<2> &mapping, const FiniteElement<2> &fe,
+                                    const Triangulation<2> &tria, bool over_time) const override
   {
+    if (g.over_time != over_time)
+      return nullptr;
     if (g.center.size() != 2)
       throw InputError("goal '" + g.name + "': expected 2 coordinates, got " +
                        std::to_string(g.center.size()));

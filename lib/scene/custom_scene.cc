@@ -439,8 +439,10 @@ void CustomScene::read_goals(const SceneOptions &o)
         throw InputError(bad + "'" + s + "' is not a finite number");
       v.push_back(x);
     }
-    if (v.size() != type->n_numbers())
-      throw InputError(bad + "expected " + std::to_string(type->n_numbers()) +
+    if (type->n_numbers() > 0 ? v.size() != type->n_numbers() : v.empty())
+      throw InputError(bad + "expected " +
+                       (type->n_numbers() > 0 ? std::to_string(type->n_numbers())
+                                              : std::string("one or more")) +
                        " comma-separated numbers after '" + kind + "'");
     if (g.name.empty())
       g.name = kind + "_" + std::to_string(i + 1);
