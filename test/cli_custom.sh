@@ -79,4 +79,27 @@ expect 2 "scene.goals.*outside the domain" -- run "$mesh" --output "$(o)" \
 expect 2 "key 'scene.rhs' does not match scene.exact_solution" -- run "$example" --output "$(o)" \
   --set "scene.rhs=0"
 expect 2 "scene.variant" -- run "$mesh" --output "$(o)" --set scene.variant=rotating
+# 4. flux goals: Hemker's heat flux from the circle beside the point goals, with its
+# own estimate; bad flux locations
+hflux=$src/config/hemker_flux.json
+expect 0 "results:" -- run "$hflux" --output "$tmp/hflux" --set adaptivity.loops=2 "${quiet[@]}"
+/usr/bin/python3 - "$tmp/hflux" <<'PY' || fail=1
+import csv, json, math, sys
+s = json.load(open(sys.argv[1] + "/summary.json"))
+rows = list(csv.DictReader(open(sys.argv[1] + "/loops.csv")))
+J = [l["goals"]["heat_I"]["J_h"] for l in s["loops"]]
+eta = [float(r["eta_heat_I"]) for r in rows]
+ok = len(J) == 2 and all(math.isfinite(x) and x > 0 for x in J + eta)
+print("heat_I: J_h", J, "eta", eta, "ok" if ok else "FAILED")
+sys.exit(0 if ok else 1)
+PY
+flux=(--set goal.reference= --set goal.over_time=true)
+expect 2 "boundary id 2 is a Neumann boundary" -- run "$hflux" --output "$(o)" "${flux[@]}" \
+  --set "goal.locations=heat = flux 2"
+expect 2 "boundary id 9 is not a boundary of the domain" -- run "$hflux" --output "$(o)" \
+  "${flux[@]}" --set "goal.locations=flux 1, 9"
+expect 2 "a flux goal is integrated over I" -- run "$hflux" --output "$(o)" \
+  --set goal.reference= --set goal.over_time=false --set "goal.locations=flux 1"
+expect 2 "invalid value 'a' in key 'goal.locations'; expected one or more" -- run "$hflux" \
+  --output "$(o)" "${flux[@]}" --set "goal.locations=flux a"
 exit $fail

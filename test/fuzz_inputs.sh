@@ -71,6 +71,13 @@ done
 for loc in '0,0' '20,20' '0.5,0.5'; do
   check "goal.locations" -- "$src/config/hemker.json" --set goal.kind=point --set "goal.locations=$loc"
 done
+# flux goals: a Neumann id, an id not in the mesh, no id, a non-integer, at T
+for loc in '2' '1,9' '' '1.5' 'x'; do
+  check "goal.locations" -- "$src/config/hemker.json" --set goal.kind=flux \
+    --set goal.over_time=true --set goal.reference= --set "goal.locations=$loc"
+done
+check "goal.over_time" -- "$src/config/hemker.json" --set goal.kind=flux --set goal.reference= \
+  --set goal.locations=1
 for w in 'a' '1,2,3' 'nan' '1,,2'; do check "goal.weights" -- "$cfg" --set "goal.weights=$w"; done
 # config files
 i=0

@@ -370,7 +370,8 @@ std::vector<Entry> goal_entries()
       {"goal", "reference", "", m(&S::reference), text,
        "Reference values of the goals for scenes without an exact solution: one value "
        "per goal, comma-separated, each optionally with its uncertainty as value+-u "
-       "(e.g. '2.605+-0.003, 1.2e-3+-1e-4'). loops.csv and summary.json then report "
+       "(e.g. '2.605+-0.003, 1.2e-3+-1e-4'), or empty for a goal without one (e.g. "
+       "'2.605+-0.003, , 1.2e-3'). loops.csv and summary.json then report "
        "J_error, I_eff, err_<goal> and I_eff_<goal> against these values; summary.json "
        "says so (\"error_reference\": \"goal.reference\") and lists the uncertainties. "
        "Empty: no reference; an error for scenes with an exact solution."},

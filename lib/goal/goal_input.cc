@@ -75,10 +75,12 @@ void set_references(const GoalInput &in, const Scene<2> &scene,
   if (items.size() != goals.size())
     throw InputError(bad + "expected " + std::to_string(goals.size()) +
                      " comma-separated values (one per goal, each optionally "
-                     "value+-uncertainty), got " +
+                     "value+-uncertainty, or empty for none), got " +
                      std::to_string(items.size()));
   for (std::size_t g = 0; g < goals.size(); ++g)
   {
+    if (items[g].empty())
+      continue; // no reference value for this goal
     const auto pm = items[g].find("+-");
     const std::string value = items[g].substr(0, pm);
     const std::string unc = pm == std::string::npos ? "0" : items[g].substr(pm + 2);

@@ -46,9 +46,11 @@ std::string goal_kind_doc()
 
 std::string goal_locations_doc()
 {
-  std::string doc = "The locations of the goals of goal.kind, separated by ';'";
+  std::string doc = "The goals of goal.kind (not scene), one per location, separated by "
+                    "';'; a location '[name =] [kind] numbers' may name its goal and take "
+                    "another kind (e.g. 'x1 = 4, 1; heat = flux 1')";
   for (const GoalType *t : goal_types())
-    doc += "; " + t->name() + ": '" + t->syntax() + "; ...'";
+    doc += "; " + t->name() + ": '" + t->syntax() + "'";
   return doc + ".";
 }
 } // namespace anisodwr
