@@ -90,6 +90,40 @@ void report(const Worst &w, double tolerance, const std::string &where,
                    ", " + g(w.t) + "); allowed: scene.check_tolerance " + g(tolerance) +
                    " x " + g(w.scale) + " (" + scale + ")");
 }
+/// The PDE's residual at the sample points: per point the smallest over the steps;
+/// scale: the largest sum of the terms' sizes.
+Worst pde_residual(const Scene<2> &scene, const ExactSolution<2> &u, const SamplePoints &points)
+{
+  const double eps = scene.epsilon, L = points.length, T = scene.end_time;
+  Worst pde;
+  for (const double t : points.times)
+    for (const auto &x : points.interior)
+    {
+      const Tensor<1, 2> b = scene.convection(x, t);
+      const double alpha = scene.reaction(x, t), f = scene.rhs(x, t);
+      double best = std::nan(""), terms = 0; // NaN if no step gives a finite residual
+      for (const double h : steps)
+      {
+        const Derivatives d = derivatives(u, x, t, h * L, h * T);
+        const double parts[5] = {d.ut, -eps * d.lap, b[0] * d.ux + b[1] * d.uy,
+                                 alpha * d.u, -f};
+        double r = 0, sum = 0;
+        for (const double p : parts)
+        {
+          r += p;
+          sum += std::abs(p);
+        }
+        if (std::isfinite(r) && !(std::abs(r) >= best))
+        {
+          best = std::abs(r);
+          terms = sum;
+        }
+      }
+      pde.add(best, x, t);
+      pde.scale = std::max(pde.scale, terms);
+    }
+  return pde;
+}
 } // namespace
 
 void check_against_exact(const Scene<2> &scene, const SamplePoints &points,
@@ -112,34 +146,7 @@ void check_against_exact(const Scene<2> &scene, const SamplePoints &points,
       u_max = std::max(u_max, std::abs(u->value(p.x, t)));
   }
 
-  // the PDE: the smallest residual over the steps; scale: the largest term
-  Worst pde;
-  for (const double t : points.times)
-    for (const auto &x : points.interior)
-    {
-      const Tensor<1, 2> b = scene.convection(x, t);
-      const double alpha = scene.reaction(x, t), f = scene.rhs(x, t);
-      double best = std::nan(""), terms = 0; // NaN if no step gives a finite residual
-      for (const double h : steps)
-      {
-        const Derivatives d = derivatives(*u, x, t, h * L, h * T);
-        const double parts[5] = {d.ut, -eps * d.lap, b[0] * d.ux + b[1] * d.uy,
-                                 alpha * d.u, -f};
-        double r = 0, sum = 0;
-        for (const double p : parts)
-        {
-          r += p;
-          sum += std::abs(p);
-        }
-        if (std::isfinite(r) && !(std::abs(r) >= best))
-        {
-          best = std::abs(r);
-          terms = sum;
-        }
-      }
-      pde.add(best, x, t);
-      pde.scale = std::max(pde.scale, terms);
-    }
+  const Worst pde = pde_residual(scene, *u, points);
   report(pde, tolerance, where, keys, keys.rhs,
          "the PDE residual u_t - eps Lap u + b.grad u + alpha u - f",
          "the largest sum of "

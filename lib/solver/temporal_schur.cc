@@ -89,33 +89,36 @@ unsigned int TemporalSchur::n_complex_pairs() const
   return static_cast<unsigned int>(blocks.size()) - n_real();
 }
 
+namespace
+{
+/// sum_l A(k, l) v(l)
+template <class V> double row_product(const dealii::FullMatrix<double> &A, unsigned int k, V v)
+{
+  double s = 0;
+  for (unsigned int l = 0; l < A.n(); ++l)
+    s += A(k, l) * v(l);
+  return s;
+}
+} // namespace
+
 void gather_modes(const dealii::FullMatrix<double> &A, const double *x, std::size_t n,
                   const std::vector<double *> &y)
 {
-  const unsigned int m = A.m();
-  const SlabLayout slab{m};
+  const SlabLayout slab{A.m()};
   for (std::size_t i = 0; i < n; ++i)
-    for (unsigned int k = 0; k < m; ++k)
-    {
-      double s = 0;
-      for (unsigned int l = 0; l < m; ++l)
-        s += A(k, l) * x[slab.index(i, l)];
-      y[k][i] = s;
-    }
+    for (unsigned int k = 0; k < A.m(); ++k)
+      y[k][i] = row_product(A, k, [&](unsigned int l) { return x[slab.index(i, l)]; });
 }
 
 void scatter_modes(const dealii::FullMatrix<double> &A,
                    const std::vector<const double *> &y, std::size_t n, double *out,
                    double alpha, double beta)
 {
-  const unsigned int m = A.m();
-  const SlabLayout slab{m};
+  const SlabLayout slab{A.m()};
   for (std::size_t i = 0; i < n; ++i)
-    for (unsigned int k = 0; k < m; ++k)
+    for (unsigned int k = 0; k < A.m(); ++k)
     {
-      double s = 0;
-      for (unsigned int l = 0; l < m; ++l)
-        s += A(k, l) * y[l][i];
+      const double s = row_product(A, k, [&](unsigned int l) { return y[l][i]; });
       double &o = out[slab.index(i, k)];
       o = (beta == 0. ? 0. : beta * o) + alpha * s;
     }
