@@ -3,6 +3,7 @@
 // the scenes' right-hand sides against the PDE residual of their exact solutions.
 #include "config/parameters.h"
 #include "scene/scene.h"
+#include "scene/scene_registry.h"
 #include "study/study.h"
 #include "study/options.h"
 
@@ -131,14 +132,13 @@ TEST(Scenes, RhsMatchesPdeResidualOfExactSolution)
   // f = u_t - eps Lap u + b.grad u + alpha u, checked with central differences of u.
   std::mt19937 gen(7);
   std::uniform_real_distribution<double> d(0.05, 0.95);
-  // every scene with an exact solution (custom scenes are checked by their own test)
+  // every registered scene with an exact solution (the custom scene has none with its
+  // default keys; custom scenes are checked by their own test)
   unsigned int checked = 0;
-  for (const auto &[name, scene_name] : names(SceneName{}))
+  for (const SceneEntry &entry : scene_registry())
     for (const std::string variant : {"", "x"})
     {
-      if (name == SceneName::custom)
-        continue;
-      const std::string scene = scene_name;
+      const std::string scene = entry.name;
       std::vector<std::string> s{"scene.name=" + scene, "scene.epsilon=0.01"};
       std::string v = variant;
       if (variant == "x")
@@ -177,7 +177,8 @@ TEST(Scenes, RhsMatchesPdeResidualOfExactSolution)
         }
       }
     }
-  EXPECT_EQ(checked, 8u); // moving_hump, manufactured, heat (2 variants each), boundary_layer (2)
+  // at least moving_hump, manufactured, heat (2 variants each), boundary_layer (2)
+  EXPECT_GE(checked, 8u);
 }
 
 TEST(Scenes, MovingHumpRhsInsideTheLayerAtEpsilon1e6)

@@ -46,7 +46,7 @@ TEST(Parameters, EnumsReadAndPrintByName)
        "adaptivity.marking=per_direction", "adaptivity.time_indicator=higher_order",
        "adaptivity.space_indicator=primal_residual",
        "adaptivity.adjoint_stabilization=none"});
-  EXPECT_EQ(p.scene.name, SceneName::hemker);
+  EXPECT_EQ(p.scene.name, "hemker");
   EXPECT_EQ(p.discretization.supg_length, SupgLength::streamline);
   EXPECT_EQ(p.study.mode, StudyMode::dwr);
   EXPECT_EQ(p.study.refine, StudyRefine::time);
@@ -110,6 +110,14 @@ TEST(Parameters, Errors)
   EXPECT_NE(bad.find("expected Any one of joint, per_direction, cell (Anisotropic"),
             std::string::npos)
       << bad;
+  // scene.name: the names of the scene registry, documented by its one-liners
+  const std::string scene = error_of({"scene.name=hemkerr"});
+  EXPECT_NE(scene.find("--set: invalid value 'hemkerr' for key 'scene.name'; expected Any "
+                       "one of moving_hump, manufactured, heat, boundary_layer, hemker, "
+                       "custom (The scene"),
+            std::string::npos)
+      << scene;
+  EXPECT_NE(scene.find("hemker: flow past the unit circle"), std::string::npos) << scene;
   EXPECT_NE(error_of({"adaptivity.kappa=2"}).find("expected a fraction in [0, 1]"),
             std::string::npos);
   EXPECT_NE(error_of({"scene.epsilon=0"}).find("expected a number with 0 < v <= 1e6"),

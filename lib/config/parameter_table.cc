@@ -2,6 +2,7 @@
 
 #include "base/parse_number.h"
 #include "goal/goal_type.h"
+#include "scene/scene_registry.h"
 
 #include <sstream>
 #include <stdexcept>
@@ -115,10 +116,8 @@ std::vector<Entry> scene_entries()
   const auto m = [](auto member) { return at(&Parameters::scene, member); };
   const auto c = [](auto member) { return at(&Parameters::scene, &S::custom, member); };
   return {
-      {"scene", "name", "moving_hump", m(&S::name), by_name,
-       "Benchmark scene (see doc/method.md §10): moving_hump, manufactured, heat, "
-       "boundary_layer or hemker; or custom: the scene defined by the keys scene.grid ... "
-       "scene.check_tolerance below."},
+      {"scene", "name", "moving_hump", m(&S::name),
+       std::make_shared<P::Selection>(scene_names("|")), scene_key_doc()},
       {"scene", "variant", "", m(&S::variant), text,
        "Scene variant. manufactured: constant (default), rotating (time-dependent b and "
        "alpha), poly_space (rotating coefficients, spatial part in Q2). heat: poly "

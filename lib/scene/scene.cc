@@ -1,8 +1,7 @@
 #include "scene/scene.h"
 
 #include "base/errors.h"
-#include "scene/custom_scene.h"
-#include "scene/scenes.h"
+#include "scene/scene_registry.h"
 
 namespace anisodwr
 {
@@ -98,33 +97,15 @@ bool Scene<dim>::contains_box(const dealii::Point<dim> &lo, const dealii::Point<
 
 template <int dim> std::unique_ptr<Scene<dim>> create_scene(const SceneOptions &o)
 {
+  static_assert(dim == 2, "the scene registry holds 2D scenes");
+  const SceneEntry *entry = find_scene(o.name);
+  if (!entry) // Parameters checks scene.name against the registry
+    throw InputError(o.source("scene.name") + ": invalid value '" + o.name +
+                     "' for key 'scene.name'; expected one of: " + scene_names(", "));
   std::unique_ptr<Scene<dim>> scene;
   try
   {
-    switch (o.name)
-    {
-    case SceneName::moving_hump:
-      scene = std::make_unique<MovingHump>(o.epsilon, o.variant);
-      break;
-    case SceneName::manufactured:
-      scene = std::make_unique<Manufactured>(o.epsilon, o.variant);
-      break;
-    case SceneName::heat:
-      scene = std::make_unique<Heat>(o.epsilon, o.variant);
-      break;
-    case SceneName::boundary_layer:
-      scene = std::make_unique<BoundaryLayer>(o.epsilon, o.variant);
-      break;
-    case SceneName::hemker:
-      scene = std::make_unique<Hemker>(o.epsilon, o.variant);
-      break;
-    case SceneName::custom:
-      if (!o.variant.empty())
-        throw InputError(o.variant_source + ": invalid value '" + o.variant +
-                         "' for key 'scene.variant' of scene 'custom'; expected \"\"");
-      scene = std::make_unique<CustomScene>(o);
-      break;
-    }
+    scene = entry->make(o);
     scene->end_time = o.end_time;
   }
   catch (const InputError &e)

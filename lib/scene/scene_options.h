@@ -1,7 +1,6 @@
 #pragma once
 // The scene section of a config (config/parameters.h: SceneSection is this struct).
 #include "scene/custom_options.h"
-#include "scene/scene_name.h"
 
 #include <map>
 #include <string>
@@ -12,7 +11,8 @@ namespace anisodwr
 /// config file's path, "--set" or "default").
 struct SceneOptions
 {
-  SceneName name = SceneName::moving_hump;
+  /// a name in the scene registry (lib/scene/scene_registry.h)
+  std::string name = "moving_hump";
   std::string variant = "";
   double epsilon = 1e-6;
   double end_time = 0.5;
