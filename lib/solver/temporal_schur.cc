@@ -104,9 +104,9 @@ template <class V> double row_product(const dealii::FullMatrix<double> &A, unsig
 void gather_modes(const dealii::FullMatrix<double> &A, const double *x, std::size_t n,
                   const std::vector<double *> &y)
 {
-  const SlabLayout slab{A.m()};
+  const SlabLayout slab{static_cast<unsigned int>(A.m())};
   for (std::size_t i = 0; i < n; ++i)
-    for (unsigned int k = 0; k < A.m(); ++k)
+    for (unsigned int k = 0; k < slab.m; ++k)
       y[k][i] = row_product(A, k, [&](unsigned int l) { return x[slab.index(i, l)]; });
 }
 
@@ -114,9 +114,9 @@ void scatter_modes(const dealii::FullMatrix<double> &A,
                    const std::vector<const double *> &y, std::size_t n, double *out,
                    double alpha, double beta)
 {
-  const SlabLayout slab{A.m()};
+  const SlabLayout slab{static_cast<unsigned int>(A.m())};
   for (std::size_t i = 0; i < n; ++i)
-    for (unsigned int k = 0; k < A.m(); ++k)
+    for (unsigned int k = 0; k < slab.m; ++k)
     {
       const double s = row_product(A, k, [&](unsigned int l) { return y[l][i]; });
       double &o = out[slab.index(i, k)];
