@@ -4,8 +4,10 @@
 #include "base/errors.h"
 #include "config/parameters.h"
 #include "scene/custom_scene.h"
+#include "scene/separable.h"
 #include "study/options.h"
 
+#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <gtest/gtest.h>
@@ -68,6 +70,71 @@ TEST(CustomScene, ReproducesTheMovingHumpsData)
     EXPECT_EQ(a[g].radius, b[g].radius);
     EXPECT_EQ(a[g].over_time, b[g].over_time);
   }
+}
+
+// f(x, t) as sum_k a_k(t) g_k(x): found with the fewest terms where f has that form,
+// reproducing f between the sampled times; refused where it has not
+TEST(SeparateInTime, FindsTheRankAndReproducesF)
+{
+  std::vector<Point<2>> points;
+  for (int i = 0; i < 40; ++i)
+    points.emplace_back(0.025 * i, std::fmod(0.37 * i, 1.));
+  const auto rank3 = [](const Point<2> &x, double t)
+  { return std::sin(M_PI * t) * x[0] * x[0] + std::cos(3 * t) * std::exp(x[1]) + t * t; };
+  std::vector<LoadTerm<2>> terms;
+  ASSERT_TRUE(separate_in_time(rank3, true, points, 2., terms));
+  EXPECT_EQ(terms.size(), 3u);
+  for (const double t : {0., 0.011, 0.73, 1.999})
+    for (const Point<2> x : {Point<2>(0.3, 0.9), Point<2>(-0.5, 2.), Point<2>(0.77, 0.01)})
+    {
+      double f = 0;
+      for (const auto &term : terms)
+        f += term.a(t) * term.g(x);
+      EXPECT_NEAR(f, rank3(x, t), 1e-11) << x << " " << t;
+    }
+  // a pulse travelling with t is not a short sum of products
+  const auto pulse = [](const Point<2> &x, double t)
+  { return std::exp(-(x[0] - t) * (x[0] - t) / 0.01); };
+  EXPECT_FALSE(separate_in_time(pulse, true, points, 1., terms));
+  // no t: one term
+  ASSERT_TRUE(separate_in_time(pulse, false, points, 1., terms));
+  ASSERT_EQ(terms.size(), 1u);
+  EXPECT_EQ(terms[0].a(0.7) * terms[0].g(Point<2>(0.2, 0.)), pulse(Point<2>(0.2, 0.), 0.));
+  // the custom moving hump's f (900 characters) is two products
+  ASSERT_TRUE(scene_of("custom_moving_hump.json")->separable_rhs(terms));
+  EXPECT_EQ(terms.size(), 2u);
+}
+
+// config/hemker.msh with scene.manifolds is the built-in Hemker scene's coarse mesh,
+// and refines onto the same circle
+TEST(CustomScene, MeshFileWithManifoldsGivesHemkersMesh)
+{
+  const auto custom = scene_of("custom_hemker.json");
+  const auto hemker = scene_of("hemker.json");
+  dealii::Triangulation<2> a, b;
+  custom->make_coarse_grid(a);
+  hemker->make_coarse_grid(b);
+  a.refine_global(3);
+  b.refine_global(3);
+  ASSERT_EQ(a.n_active_cells(), b.n_active_cells());
+  double on_circle = 0;
+  for (auto ca = a.begin_active(), cb = b.begin_active(); ca != a.end(); ++ca, ++cb)
+    for (unsigned int v = 0; v < 4; ++v)
+    {
+      EXPECT_LT(ca->vertex(v).distance(cb->vertex(v)), 1e-14) << ca->vertex(v);
+      if (ca->vertex(v).norm() < 1.01)
+        on_circle = std::max(on_circle, std::abs(ca->vertex(v).norm() - 1.));
+    }
+  EXPECT_LT(on_circle, 1e-14);
+  EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 7: polar 0, 0"})
+                .find("boundary id 7 in key 'scene.manifolds' is not one of the domain"),
+            std::string::npos);
+  EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 4: transfinite"})
+                .find("in key 'scene.manifolds'; expected"),
+            std::string::npos);
+  EXPECT_NE(error_of("custom_example.json", {"scene.manifolds=cells 0: transfinite"})
+                .find("key 'scene.manifolds' is for a mesh file"),
+            std::string::npos);
 }
 
 TEST(CustomScene, ConsistentDataPassTheCheck)

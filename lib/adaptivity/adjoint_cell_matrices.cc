@@ -15,8 +15,7 @@ template <int dim> void CellKernel<dim>::build_adjoint_matrices()
     M.reinit(nw, nw);
   for (unsigned int q = 0; q < nq; ++q)
   {
-    const Point<dim> &x = fv_p.quadrature_point(q);
-    const auto c = weak_form::coefficients(scene, x, 0.);
+    const auto c = coefficients(q, 0.);
     const double jx = fv_p.JxW(q);
     for (unsigned int l = 0; l < nw; ++l)
     {

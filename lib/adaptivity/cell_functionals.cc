@@ -36,7 +36,6 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
     combine(Un, idx, dell[m], 1. / tau, ct);
     for (unsigned int q = 0; q < nq; ++q)
     {
-      const Point<dim> &x = fv_p.quadrature_point(q);
       double uh = 0, ut = 0, lap = 0;
       Tensor<1, dim> grad;
       for (unsigned int l = 0; l < np; ++l)
@@ -46,7 +45,7 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
         grad += c(l) * fv_p.shape_grad(l, q);
         lap += c(l) * trace(fv_p.shape_hessian(l, q));
       }
-      const auto cf = weak_form::coefficients(scene, x, t);
+      const auto cf = coefficients(q, t);
       const double R = weak_form::residual(cf, load(q, t, a), ut, uh, grad, lap);
       const double jx = fv_p.JxW(q) * wt;
       for (unsigned int l = 0; l < nw; ++l)
@@ -120,7 +119,7 @@ void CellKernel<dim>::add_temporal_jump(double t0, double delta, const Vector<do
     double jump = Uprev ? 0. : -scene.initial_value(x);
     for (unsigned int l = 0; l < np; ++l)
       jump += (cp(l) - cm(l)) * fv_p.shape_value(l, q);
-    const Tensor<1, dim> b = scene.convection(x, t0);
+    const Tensor<1, dim> b = coefficients(q, t0).b;
     for (unsigned int l = 0; l < nw; ++l)
     {
       rho.jump(l) -= fv_p.JxW(q) * jump * fv_w.shape_value(l, q);
@@ -163,7 +162,6 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau, const SlabFuncti
     const Vector<double> &z = jump ? zt.plus : zt.val[m];
     for (unsigned int q = 0; q < nq; ++q)
     {
-      const Point<dim> &x = fv_p.quadrature_point(q);
       double zq = 0;
       Tensor<1, dim> gz;
       for (unsigned int l = 0; l < nw; ++l)
@@ -171,7 +169,7 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau, const SlabFuncti
         zq += z(l) * fv_w.shape_value(l, q);
         gz += z(l) * fv_w.shape_grad(l, q);
       }
-      const auto cf = weak_form::coefficients(scene, x, t);
+      const auto cf = coefficients(q, t);
       const double jx = wt * fv_p.JxW(q);
       // the test side: zq (A) or delta b.grad y (S')
       const double test = supg ? weak_form::supg_test(delta, cf.b, gz) : zq;

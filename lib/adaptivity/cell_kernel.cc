@@ -64,6 +64,12 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
     for (unsigned int q = 0; q < quad.size(); ++q)
       load_at_q[j][q] = load_terms[j].g(fv_p.quadrature_point(q));
   if (constant_coefficients)
+  {
+    coefficients_at_q.clear();
+    for (unsigned int q = 0; q < quad.size(); ++q)
+      coefficients_at_q.push_back(weak_form::coefficients(scene, fv_p.quadrature_point(q), 0.));
+  }
+  if (constant_coefficients)
     build_adjoint_matrices();
   idx.resize(fe_p.n_dofs_per_cell());
   cell->get_dof_indices(idx);

@@ -7,6 +7,7 @@
 //   adjoint_cell_matrices.cc     A and S' as cell matrices (coefficients constant in t)
 //   slab_functions.cc            slab functions in W-local coefficients
 #include "space/space.h"
+#include "space/weak_form.h"
 #include "time/temporal_basis.h"
 
 #include <deal.II/base/quadrature_lib.h>
@@ -142,6 +143,15 @@ private:
   /// val part, [3] S' dt/jump part (rows: the first slot, columns: z).
   const bool constant_coefficients;
   std::array<dealii::FullMatrix<double>, 4> adj_matrices;
+  /// eps, b and alpha at the cell's quadrature points, evaluated once per cell where
+  /// they do not depend on t (constant_coefficients)
+  std::vector<weak_form::Coefficients<dim>> coefficients_at_q;
+  /// eps, b and alpha at quadrature point q and time t
+  weak_form::Coefficients<dim> coefficients(unsigned int q, double t) const
+  {
+    return constant_coefficients ? coefficients_at_q[q]
+                                 : weak_form::coefficients(scene, fv_p.quadrature_point(q), t);
+  }
 
   /// f = sum_j a_j(t) g_j(x) where the scene gives it (Scene::separable_rhs): g_j at the
   /// cell's quadrature points, evaluated once per cell for all slabs and Gauss points.

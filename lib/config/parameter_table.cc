@@ -146,6 +146,12 @@ std::vector<Entry> scene_entries()
        "instead of scene.grid; the physical tags of its lines are the boundary ids. A "
        "relative path is relative to the config file's directory (to the working "
        "directory with --set)."},
+      {"scene", "manifolds", "", c(&C::manifolds), text,
+       "custom with scene.mesh_file: the curved parts of the mesh, which a .msh file "
+       "cannot carry, so that refinement follows them: 'boundary ids: polar x, y' (faces "
+       "on a circle about (x, y)), 'cells ids: polar x, y' or 'cells ids: transfinite' "
+       "(cells by material id, the physical tag of a quadrilateral: transfinite "
+       "interpolation from their curved faces), separated by ';'. Empty: all flat."},
       {"scene", "convection", "0; 0", c(&C::convection), text,
        "custom: b = (b_x; b_y), two expressions in x, y, t separated by ';'. The "
        "coefficients depend on time if t appears in b or alpha."},
@@ -166,9 +172,10 @@ std::vector<Entry> scene_entries()
        "error norms and I_eff are computed, and f, u_0 and the boundary data are checked "
        "against u at sample points (scene.check_tolerance)."},
       {"scene", "goals", "", c(&C::goals), text,
-       "custom: the scene's goals (goal.kind = scene), '[name =] point x, y' or '[name =] "
-       "mean x0, y0, x1, y1', separated by ';' (names default to point_1, mean_2, ...); "
-       "empty: the value at the centre of the bounding box at T."},
+       "custom: the scene's goals (goal.kind = scene), '[name =] kind numbers' separated "
+       "by ';', a kind of goal.kind with its numbers as in goal.locations (e.g. 'u_mid = "
+       "point 0.5, 0.5; heat = flux 4'; names default to point_1, mean_2, ...); empty: "
+       "the value at the centre of the bounding box at T."},
       {"scene", "goals_over_time", "false", c(&C::goals_over_time), boolean,
        "custom: scene.goals are integrals over (0, T) (true) or values at T (false)."},
       {"scene", "check_tolerance", "1e-6", c(&C::check_tolerance), real(0.),

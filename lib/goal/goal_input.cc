@@ -2,6 +2,7 @@
 
 #include "base/errors.h"
 #include "base/parse_number.h"
+#include "base/text.h"
 #include "goal/goal.h"
 
 #include <cmath>
@@ -94,53 +95,49 @@ void set_references(const GoalInput &in, const Scene<2> &scene,
 }
 } // namespace
 
-namespace
+GoalSpec parse_goal_item(const std::string &text, std::size_t i, const GoalSpec &defaults,
+                         const std::string &key, const std::string &where,
+                         const Scene<2> &scene)
 {
-/// One location of goal.locations, "[name =] [kind] numbers" (kind: goal.kind if
-/// absent), as the goal number i + 1.
-GoalSpec parse_location(const std::string &location, std::size_t i, const GoalInput &in,
-                        const Scene<2> &scene)
-{
-  const std::string where = in.locations_source;
-  std::string item = location;
-  GoalSpec g;
-  g.kind = in.kind;
-  const auto trim = [](const std::string &t)
-  {
-    const auto a = t.find_first_not_of(" \t"), b = t.find_last_not_of(" \t");
-    return a == std::string::npos ? std::string() : t.substr(a, b - a + 1);
-  };
+  std::string item = trim_ws(text);
+  GoalSpec g = defaults;
   if (const auto eq = item.find('='); eq != std::string::npos)
   {
-    g.name = trim(item.substr(0, eq));
-    item = trim(item.substr(eq + 1));
+    g.name = trim_ws(item.substr(0, eq));
+    item = trim_ws(item.substr(eq + 1));
     if (g.name.empty() ||
         g.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
                                  "0123456789_") != std::string::npos)
-      throw InputError(where + ": invalid goal name '" + g.name +
-                       "' in key 'goal.locations'; a goal name consists of letters, "
-                       "digits and _");
+      throw InputError(where + ": invalid goal name '" + g.name + "' in key '" + key +
+                       "'; a goal name consists of letters, digits and _");
   }
   const auto space = item.find_first_of(" \t");
   for (const GoalType *t : goal_types())
     if (space != std::string::npos && item.substr(0, space) == t->name())
     {
       g.kind = t->name();
-      item = trim(item.substr(space + 1));
+      item = trim_ws(item.substr(space + 1));
     }
+  if (g.kind.empty())
+  {
+    std::string forms;
+    for (const GoalType *t : goal_types())
+      forms += (forms.empty() ? "" : " or ") + std::string("[name =] ") + t->name() +
+               " " + t->syntax();
+    throw InputError(where + ": invalid goal '" + trim_ws(text) + "' in key '" + key +
+                     "'; expected " + forms);
+  }
   const GoalType &type = goal_type(g.kind);
   if (g.name.empty())
     g.name = g.kind + "_" + std::to_string(i + 1);
-  g.over_time = in.over_time;
-  if (type.has_radius())
-    g.radius = in.radius;
-  type.set_location(numbers(item, "goal.locations", type.n_numbers(), where), scene,
-                    where + ": invalid " + type.noun() + " '" + item +
-                        "' in key 'goal.locations'; ",
+  if (!type.has_radius())
+    g.radius = 0;
+  type.set_location(numbers(item, key, type.n_numbers(), where), scene,
+                    where + ": invalid " + type.noun() + " '" + item + "' in key '" + key +
+                        "'; ",
                     g);
   return g;
 }
-} // namespace
 
 std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
 {
@@ -155,8 +152,12 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
       throw InputError(where + ": key 'goal.locations' is empty; goal.kind = " + in.kind +
                        " needs at least one location (" + goal_type(in.kind).syntax() +
                        ")");
+    GoalSpec defaults;
+    defaults.kind = in.kind;
+    defaults.over_time = in.over_time;
+    defaults.radius = in.radius;
     for (std::size_t i = 0; i < items.size(); ++i)
-      goals.push_back(parse_location(items[i], i, in, scene));
+      goals.push_back(parse_goal_item(items[i], i, defaults, "goal.locations", where, scene));
   }
   // a mollifier wider than the domain is no point goal (and makes J a domain mean)
   const auto box = scene.bounding_box();

@@ -10,6 +10,16 @@
 namespace anisodwr
 {
 
+/// One goal of a list of goals (goal.locations, scene.goals), number i + 1:
+/// "[name =] [kind] numbers" with a registered kind (GoalType), that of `defaults` where
+/// it is omitted (an empty one: it must be given), and the name "<kind>_<i + 1>" where
+/// that is. The other fields (over_time, radius) come from `defaults`; the location is
+/// set and checked against `scene` by GoalType::set_location. InputError "<where>:
+/// invalid ... in key '<key>'; ..." on bad input.
+GoalSpec parse_goal_item(const std::string &item, std::size_t i, const GoalSpec &defaults,
+                         const std::string &key, const std::string &where,
+                         const Scene<2> &scene);
+
 /// The goals of a run (InputError naming the key on bad input).
 std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene);
 

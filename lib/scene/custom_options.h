@@ -12,6 +12,7 @@ struct CustomSceneOptions
   std::string grid = "hyper_cube";
   std::string grid_arguments = "0 : 1 : true";
   std::string mesh_file = "";
+  std::string manifolds = "";
   std::string convection = "0; 0";
   std::string reaction = "0";
   std::string rhs = "0";

@@ -1,7 +1,11 @@
 #include "scene/custom_scene.h"
 
 #include "base/errors.h"
+#include "base/text.h"
+#include "goal/goal_input.h"
 #include "goal/goal_type.h"
+#include "scene/mesh_manifolds.h"
+#include "scene/separable.h"
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
@@ -22,24 +26,6 @@ namespace
 {
 const std::vector<std::string> xyt{"x", "y", "t"};
 const std::vector<std::string> xyt_n{"x", "y", "t", "nx", "ny"};
-
-std::string trim_ws(const std::string &s)
-{
-  const auto a = s.find_first_not_of(" \t\n\r"), b = s.find_last_not_of(" \t\n\r");
-  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
-}
-
-std::vector<std::string> split_ws(const std::string &s, char sep)
-{
-  std::vector<std::string> out;
-  std::string item;
-  std::istringstream in(s);
-  while (std::getline(in, item, sep))
-    out.push_back(trim_ws(item));
-  if (!s.empty() && s.back() == sep)
-    out.push_back("");
-  return out;
-}
 
 /// A library's (deal.II's) error text in one line: its "Additional information", else
 /// its first non-empty line.
@@ -178,6 +164,8 @@ struct CustomScene::Geometry
   std::set<types::boundary_id> ids;
   /// a generator's name and arguments; empty for a mesh file
   std::string generator, arguments;
+  /// a mesh file's manifolds (scene.manifolds)
+  std::vector<ManifoldItem> manifolds;
 
   void build(const SceneOptions &o, std::string &domain);
   /// The coarse mesh into `tria`: a generator's is generated again (its manifolds, e.g.
@@ -185,7 +173,14 @@ struct CustomScene::Geometry
   void make(Triangulation<2> &tria) const
   {
     if (generator.empty())
+    {
+      // copy_triangulation copies the mesh smoothing too: keep the caller's (the DWR
+      // meshes' anisotropic closure)
+      const auto smoothing = tria.get_mesh_smoothing();
       tria.copy_triangulation(coarse);
+      tria.set_mesh_smoothing(smoothing);
+      attach_manifolds(manifolds, tria);
+    }
     else
       GridGenerator::generate_from_name_and_arguments(tria, generator, arguments);
   }
@@ -228,9 +223,17 @@ void CustomScene::Geometry::read_mesh(const SceneOptions &o, std::string &domain
 void CustomScene::Geometry::build(const SceneOptions &o, std::string &domain)
 {
   if (!trim_ws(o.custom.mesh_file).empty())
+  {
     read_mesh(o, domain);
+    manifolds = parse_manifolds(o.custom.manifolds, coarse, o.source("scene.manifolds"),
+                                domain);
+  }
   else
   {
+    if (!trim_ws(o.custom.manifolds).empty())
+      throw InputError(o.source("scene.manifolds") + ": key 'scene.manifolds' is for a "
+                       "mesh file (scene.mesh_file); the generator scene.grid = '" +
+                       o.custom.grid + "' attaches its own manifolds");
     const std::string &name = o.custom.grid, &args = o.custom.grid_arguments;
     try
     {
@@ -315,6 +318,14 @@ CustomScene::CustomScene(const SceneOptions &o) : geometry(std::make_unique<Geom
   f = parse(c.rhs, "scene.rhs");
   u0 = parse(c.initial_value, "scene.initial_value");
   time_dependent = b[0].uses("t") || b[1].uses("t") || alpha.uses("t");
+  if (!time_dependent)
+  {
+    const Expression rhs = f;
+    separable = separate_in_time([rhs](const Point<2> &x, double t)
+                                 { return rhs(x[0], x[1], t); },
+                                 f.uses("t"), sample_points().interior, end_time,
+                                 load_terms);
+  }
   read_boundary_data(o, constants);
   read_goals(o);
   if (!trim_ws(c.exact_solution).empty())
@@ -389,70 +400,15 @@ void CustomScene::read_boundary_data(const SceneOptions &o, const Constants &con
 
 void CustomScene::read_goals(const SceneOptions &o)
 {
-  const std::string key = "scene.goals", where = o.source(key), &text = o.custom.goals;
+  const std::string key = "scene.goals", &text = o.custom.goals;
   if (trim_ws(text).empty())
     return;
+  GoalSpec defaults; // the kind must be given; the radius is goal.radius (default_goals)
+  defaults.kind = "";
+  defaults.over_time = o.custom.goals_over_time;
   const auto items = split_ws(text, ';');
   for (std::size_t i = 0; i < items.size(); ++i)
-  {
-    const std::string bad =
-        where + ": invalid goal '" + items[i] + "' in key '" + key + "'; ";
-    std::string item = items[i];
-    GoalSpec g;
-    const auto eq = item.find('=');
-    if (eq != std::string::npos)
-    {
-      g.name = trim_ws(item.substr(0, eq));
-      item = trim_ws(item.substr(eq + 1));
-    }
-    std::istringstream in(item);
-    std::string kind;
-    in >> kind;
-    const GoalType *type = nullptr;
-    for (const GoalType *t : goal_types())
-      if (t->name() == kind)
-        type = t;
-    if (!type)
-    {
-      std::string forms;
-      for (const GoalType *t : goal_types())
-        forms += (forms.empty() ? "" : " or ") + std::string("[name =] ") + t->name() +
-                 " " + t->syntax();
-      throw InputError(bad + "expected " + forms);
-    }
-    g.kind = kind;
-    std::string rest;
-    std::getline(in, rest);
-    std::vector<double> v;
-    for (const auto &s : split_ws(rest, ','))
-    {
-      std::size_t used = 0;
-      double x = std::nan("");
-      try
-      {
-        x = std::stod(s, &used);
-      }
-      catch (const std::exception &)
-      {
-      }
-      if (used != s.size() || !std::isfinite(x))
-        throw InputError(bad + "'" + s + "' is not a finite number");
-      v.push_back(x);
-    }
-    if (type->n_numbers() > 0 ? v.size() != type->n_numbers() : v.empty())
-      throw InputError(bad + "expected " +
-                       (type->n_numbers() > 0 ? std::to_string(type->n_numbers())
-                                              : std::string("one or more")) +
-                       " comma-separated numbers after '" + kind + "'");
-    if (g.name.empty())
-      g.name = kind + "_" + std::to_string(i + 1);
-    if (g.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                 "0123456789_") != std::string::npos)
-      throw InputError(bad + "a goal name consists of letters, digits and _");
-    g.over_time = o.custom.goals_over_time;
-    type->set_location(v, *this, bad, g);
-    goals.push_back(g);
-  }
+    goals.push_back(parse_goal_item(items[i], i, defaults, key, o.source(key), *this));
 }
 
 void CustomScene::make_coarse_grid(Triangulation<2, 2> &tria) const

@@ -63,10 +63,13 @@ public:
   /// True if t appears in b or alpha.
   bool coefficients_depend_on_time() const override { return time_dependent; }
   double rhs(const dealii::Point<2> &x, double t) const override;
+  /// f as a_k(t) g_k(x) where that reproduces f at sample points to 1e-11 of max |f|
+  /// and b and alpha do not depend on t (lib/scene/separable.h); the loads are then
+  /// assembled once per mesh.
   bool separable_rhs(std::vector<LoadTerm<2>> &terms) const override
   {
-    terms.clear();
-    return false;
+    terms = load_terms;
+    return separable;
   }
   double initial_value(const dealii::Point<2> &x) const override;
   /// The data of the boundary id the point lies on are chosen by boundary_value and
@@ -100,6 +103,8 @@ private:
   std::map<dealii::types::boundary_id, Expression> g_dirichlet, g_neumann;
   std::vector<GoalSpec> goals;
   bool time_dependent = false;
+  std::vector<LoadTerm<2>> load_terms;
+  bool separable = false;
 
   void read_boundary_data(const SceneOptions &o, const Constants &constants);
   void read_goals(const SceneOptions &o);

@@ -101,6 +101,11 @@ Expression::Expression(const std::string &text, const std::vector<std::string> &
     slot->parser.Eval(); // parses; the value at 0 does not matter
     for (const auto &v : slot->parser.GetUsedVar())
       used.push_back(v.first);
+    if (used.empty()) // a constant: evaluated once
+    {
+      constant = true;
+      value = slot->parser.Eval();
+    }
   }
   catch (const mu::Parser::exception_type &e)
   {
@@ -117,6 +122,8 @@ Expression::Expression(const std::string &text, const std::vector<std::string> &
 
 double Expression::operator()(const double *v) const
 {
+  if (constant)
+    return value;
   thread_local std::unordered_map<std::uint64_t, std::unique_ptr<Slot>> slots;
   auto &slot = slots[id];
   if (!slot)

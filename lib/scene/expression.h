@@ -23,7 +23,8 @@ public:
              const Constants &constants, const std::string &key,
              const std::string &where);
 
-  /// The value at the variables v (as many as `variables`, in that order).
+  /// The value at the variables v (as many as `variables`, in that order); an
+  /// expression in no variable is evaluated once, when it is parsed.
   double operator()(const double *v) const;
   double operator()(double x, double y, double t) const
   {
@@ -42,6 +43,8 @@ private:
   Constants constants;
   std::vector<std::string> used;
   std::uint64_t id = 0; ///< identifies this expression's parsers in each thread
+  bool constant = false; ///< uses no variable: `value` is its value
+  double value = 0;
 };
 
 /// Reads "name = value, name = value, ..." (scene.constants); each value is an

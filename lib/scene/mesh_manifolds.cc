@@ -1,0 +1,122 @@
+#include "scene/mesh_manifolds.h"
+
+#include "base/errors.h"
+#include "base/parse_number.h"
+#include "base/text.h"
+
+#include <deal.II/grid/manifold_lib.h>
+#include <deal.II/grid/tria.h>
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+namespace
+{
+std::string ids_text(const std::set<unsigned int> &ids)
+{
+  std::string s;
+  for (const auto id : ids)
+    s += (s.empty() ? "" : ", ") + std::to_string(id);
+  return s.empty() ? "none" : s;
+}
+} // namespace
+
+std::vector<ManifoldItem> parse_manifolds(const std::string &text,
+                                          const Triangulation<2, 2> &mesh,
+                                          const std::string &where,
+                                          const std::string &domain)
+{
+  std::vector<ManifoldItem> items;
+  if (trim_ws(text).empty())
+    return items;
+  std::set<unsigned int> boundary_ids, material_ids;
+  for (const auto &cell : mesh.active_cell_iterators())
+  {
+    material_ids.insert(cell->material_id());
+    for (const auto &face : cell->face_iterators())
+      if (face->at_boundary())
+        boundary_ids.insert(face->boundary_id());
+  }
+  for (const auto &item : split_ws(text, ';'))
+  {
+    const std::string bad = where + ": invalid item '" + item +
+                            "' in key 'scene.manifolds'; expected 'boundary ids: polar x, "
+                            "y', 'cells ids: polar x, y' or 'cells ids: transfinite', "
+                            "items separated by ';'";
+    ManifoldItem m;
+    const auto colon = item.find(':');
+    const auto space = item.find_first_of(" \t");
+    if (colon == std::string::npos || space == std::string::npos || space > colon)
+      throw InputError(bad);
+    const std::string what = item.substr(0, space);
+    if (what != "boundary" && what != "cells")
+      throw InputError(bad);
+    m.on_cells = what == "cells";
+    for (const auto &s : split_ws(item.substr(space, colon - space), ','))
+    {
+      if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos)
+        throw InputError(bad + " ('" + s + "' is not an id)");
+      m.ids.push_back(std::stoul(s));
+      const auto &known = m.on_cells ? material_ids : boundary_ids;
+      if (!known.count(m.ids.back()))
+        throw InputError(where + ": " + (m.on_cells ? "material id " : "boundary id ") + s +
+                         " in key 'scene.manifolds' is not one of the domain " + domain +
+                         " (its " + (m.on_cells ? "material ids" : "boundary ids") +
+                         ": " + ids_text(known) + ")");
+    }
+    std::istringstream rest(item.substr(colon + 1));
+    std::string kind;
+    rest >> kind;
+    std::string args;
+    std::getline(rest, args);
+    if (kind == "transfinite" && m.on_cells && trim_ws(args).empty())
+      m.polar = false;
+    else if (kind == "polar")
+    {
+      const auto xy = split_ws(args, ',');
+      double c[2] = {0, 0};
+      if (xy.size() != 2 || parse_double(xy[0], c[0]) != NumberStatus::ok ||
+          parse_double(xy[1], c[1]) != NumberStatus::ok)
+        throw InputError(bad + " (polar needs its centre, two numbers x, y)");
+      m.center = Point<2>(c[0], c[1]);
+    }
+    else
+      throw InputError(bad);
+    items.push_back(m);
+  }
+  return items;
+}
+
+void attach_manifolds(const std::vector<ManifoldItem> &items, Triangulation<2, 2> &tria)
+{
+  const auto has = [](const ManifoldItem &m, unsigned int id)
+  { return std::find(m.ids.begin(), m.ids.end(), id) != m.ids.end(); };
+  for (const bool cells : {true, false})
+    for (std::size_t k = 0; k < items.size(); ++k)
+      if (items[k].on_cells == cells)
+        for (const auto &cell : tria.active_cell_iterators())
+        {
+          if (cells && has(items[k], cell->material_id()))
+            cell->set_all_manifold_ids(k);
+          if (!cells)
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary() && has(items[k], face->boundary_id()))
+                face->set_manifold_id(k);
+        }
+  for (std::size_t k = 0; k < items.size(); ++k)
+    if (items[k].polar)
+      tria.set_manifold(k, PolarManifold<2>(items[k].center));
+  for (std::size_t k = 0; k < items.size(); ++k)
+    if (!items[k].polar)
+    {
+      TransfiniteInterpolationManifold<2> transfinite;
+      transfinite.initialize(tria);
+      tria.set_manifold(k, transfinite);
+    }
+}
+} // namespace anisodwr
