@@ -56,4 +56,19 @@ expect 2 "a flux goal is integrated over I" -- run "$hflux" --output "$(o)" \
   --set goal.reference= --set goal.over_time=false --set "goal.locations=flux 1"
 expect 2 "invalid value 'a' in key 'goal.locations'; expected one or more" -- run "$hflux" \
   --output "$(o)" "${flux[@]}" --set "goal.locations=flux a"
+# the flux goal's effectivity on a smooth manufactured case (Q1, dG(1), the primal-residual
+# form of eta_h): I_eff in [0.8, 1.25] on every loop with N_tot >= 1e5 (measured
+# 0.82-0.86 on loops 7-9)
+expect 0 "results:" -- run "$src/config/manufactured.json" --output "$tmp/fman" "${quiet[@]}" \
+  --set scene.variant=constant --set study.mode=dwr --set goal.kind=flux \
+  --set "goal.locations=flux 0" --set goal.over_time=true --set discretization.p=1 \
+  --set adaptivity.space_indicator=primal_residual --set adaptivity.loops=8
+/usr/bin/python3 - "$tmp/fman/loops.csv" <<'PY' || fail=1
+import csv, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if int(r["N_tot"]) >= 1e5]
+ieff = [float(r["I_eff"]) for r in rows]
+ok = len(ieff) >= 2 and all(0.8 <= x <= 1.25 for x in ieff)
+print("flux I_eff on N_tot >= 1e5:", ieff, "ok" if ok else "FAILED")
+sys.exit(0 if ok else 1)
+PY
 exit $fail
