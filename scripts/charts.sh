@@ -5,6 +5,7 @@
 #        --set adaptivity.max_memory_mb=23000 --set output.vtu_loops=2 --output results/hemker_30min_direct
 #   anisodwr run config/hemker.json --output results/hemker_bulk30
 #   anisodwr run config/convergence_{time_r0..r3,space_p1..p4}.json
+#   anisodwr run config/custom_mesh.json --set adaptivity.loops=8 --set output.vtu_loops=8
 # Charts whose inputs are missing are skipped with a message. Hemker meshes are drawn
 # at loop 12 (2.7e5 cells; loop 14 has 1.2e6, slow to draw).
 # Usage: scripts/charts.sh [RESULTS_DIR] [OUT_DIR]   (defaults results/, doc/img/)
@@ -34,6 +35,7 @@ chart compare-cut "$OUT/hemker_x4_galerkin_supg.png" x4 -1 "$S/hemker_uniform_de
   "$S/hemker_uniform_delta0.1=SUPG 0.1" "$S/hemker_uniform_delta1=SUPG 1"
 chart mesh "$OUT/moving_hump_mesh_iso.png" "$S/moving_hump_isotropic" -1 aspect_ratio
 chart mesh "$OUT/moving_hump_mesh_aniso.png" "$S/moving_hump_reference" -1 aspect_ratio
+chart mesh "$OUT/custom_mesh.png" "$R/custom_mesh" 8 u
 conv=()
 for c in time_r0 time_r1 time_r2 time_r3 space_p1 space_p2 space_p3 space_p4; do
   [ -f "$R/convergence_$c/convergence.csv" ] && conv+=("$R/convergence_$c/convergence.csv=$c")
