@@ -26,4 +26,13 @@ inline std::vector<std::string> split_ws(const std::string &s, char sep)
     out.push_back("");
   return out;
 }
+
+/// The numbers of `ids` separated by ", " (e.g. a set of boundary ids), `none` if empty.
+template <class Ids> std::string ids_text(const Ids &ids, const std::string &none = "")
+{
+  std::string s;
+  for (const auto id : ids)
+    s += (s.empty() ? "" : ", ") + std::to_string(id);
+  return s.empty() ? none : s;
+}
 } // namespace anisodwr

@@ -52,14 +52,6 @@ std::string one_line(const std::string &what)
   return out;
 }
 
-std::string ids_text(const std::set<types::boundary_id> &ids)
-{
-  std::string s;
-  for (const auto id : ids)
-    s += (s.empty() ? "" : ", ") + std::to_string(id);
-  return s;
-}
-
 /// True if x lies in the polygon v (counter-clockwise or not) or within tol of its edges.
 bool in_polygon(const Point<2> &x, const std::array<Point<2>, 4> &v, double tol)
 {
@@ -318,12 +310,13 @@ CustomScene::CustomScene(const SceneOptions &o) : geometry(std::make_unique<Geom
   f = parse(c.rhs, "scene.rhs");
   u0 = parse(c.initial_value, "scene.initial_value");
   time_dependent = b[0].uses("t") || b[1].uses("t") || alpha.uses("t");
+  const SamplePoints samples = sample_points();
   if (!time_dependent)
   {
     const Expression rhs = f;
     separable = separate_in_time([rhs](const Point<2> &x, double t)
                                  { return rhs(x[0], x[1], t); },
-                                 f.uses("t"), sample_points().interior, end_time,
+                                 f.uses("t"), samples.interior, end_time,
                                  load_terms);
   }
   read_boundary_data(o, constants);
@@ -336,7 +329,7 @@ CustomScene::CustomScene(const SceneOptions &o) : geometry(std::make_unique<Geom
     DataKeys keys;
     for (const auto &key : {keys.rhs, keys.initial_value, keys.dirichlet, keys.neumann})
       keys.sources[key] = o.source(key);
-    check_against_exact(*this, sample_points(), c.check_tolerance,
+    check_against_exact(*this, samples, c.check_tolerance,
                         o.source("scene.exact_solution"), keys);
   }
 }

@@ -15,17 +15,6 @@ namespace anisodwr
 {
 using namespace dealii;
 
-namespace
-{
-std::string ids_text(const std::set<unsigned int> &ids)
-{
-  std::string s;
-  for (const auto id : ids)
-    s += (s.empty() ? "" : ", ") + std::to_string(id);
-  return s.empty() ? "none" : s;
-}
-} // namespace
-
 std::vector<ManifoldItem> parse_manifolds(const std::string &text,
                                           const Triangulation<2, 2> &mesh,
                                           const std::string &where,
@@ -67,7 +56,7 @@ std::vector<ManifoldItem> parse_manifolds(const std::string &text,
         throw InputError(where + ": " + (m.on_cells ? "material id " : "boundary id ") + s +
                          " in key 'scene.manifolds' is not one of the domain " + domain +
                          " (its " + (m.on_cells ? "material ids" : "boundary ids") +
-                         ": " + ids_text(known) + ")");
+                         ": " + ids_text(known, "none") + ")");
     }
     std::istringstream rest(item.substr(colon + 1));
     std::string kind;
