@@ -291,6 +291,7 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator & /*K = candidates[0]*
   std::vector<CellMap<dim>> maps;
   for (const auto &c : candidates)
     maps.emplace_back(c);
+  std::vector<double> phi(np); // the primal shape functions at one grid point
   for (unsigned int g = 0; g < n_grid; ++g)
   {
     Point<dim> xi;
@@ -306,6 +307,8 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator & /*K = candidates[0]*
       return LocalMap();
     for (unsigned int d = 0; d < dim; ++d)
       xc[d] = std::min(1., std::max(0., xc[d]));
+    for (unsigned int l = 0; l < np; ++l)
+      phi[l] = fe.shape_value(l, xc);
     for (unsigned int m = 0; m < nw; ++m)
     {
       double L = 1;
@@ -313,7 +316,7 @@ LocalMap SpatialOperators<dim>::build(const cell_iterator & /*K = candidates[0]*
         L *= lagrange(nodes[d], a[d], wpts[m][d]);
       if (L != 0.)
         for (unsigned int l = 0; l < np; ++l)
-          map.matrix(m, c_found * np + l) += L * fe.shape_value(l, xc);
+          map.matrix(m, c_found * np + l) += L * phi[l];
     }
   }
   return map;

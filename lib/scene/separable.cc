@@ -13,7 +13,7 @@ namespace anisodwr
 {
 using namespace dealii;
 
-namespace
+namespace separable_detail // not anonymous: unity builds merge this file with others
 {
 using Column = std::vector<double>;
 
@@ -93,7 +93,7 @@ std::vector<std::size_t> pivot_rows(const std::vector<Column> &F,
 }
 /// a(t) = M^{-1} f(x_k, t), the time factors of all terms at once; the last t's factors
 /// are kept per thread (the terms ask for them one after the other at the same t).
-std::atomic<std::uint64_t> next_id{1};
+std::atomic<std::uint64_t> next_decomposition_id{1};
 
 struct TimeCoefficients
 {
@@ -101,7 +101,7 @@ struct TimeCoefficients
   FullMatrix<double> M;
   std::vector<Point<2>> x_k;
   /// tells the factors of this decomposition from an earlier one at the same address
-  std::uint64_t id = next_id++;
+  std::uint64_t id = next_decomposition_id++;
 
   const Vector<double> &at(double t) const
   {
@@ -124,12 +124,13 @@ struct TimeCoefficients
     return last.a;
   }
 };
-} // namespace
+} // namespace separable_detail
 
 bool separate_in_time(const std::function<double(const Point<2> &, double)> &f,
                       bool uses_t, const std::vector<Point<2>> &points, double end_time,
                       std::vector<LoadTerm<2>> &terms, unsigned int max_terms)
 {
+  using namespace separable_detail;
   terms.clear();
   if (!uses_t)
   {
