@@ -82,7 +82,7 @@ TEST(SeparateInTime, FindsTheRankAndReproducesF)
   const auto rank3 = [](const Point<2> &x, double t)
   { return std::sin(M_PI * t) * x[0] * x[0] + std::cos(3 * t) * std::exp(x[1]) + t * t; };
   std::vector<LoadTerm<2>> terms;
-  ASSERT_TRUE(separate_in_time(rank3, true, points, 2., terms));
+  ASSERT_TRUE(separate_in_time(rank3, true, points, {}, 2., terms));
   EXPECT_EQ(terms.size(), 3u);
   for (const double t : {0., 0.011, 0.73, 1.999})
     for (const Point<2> x : {Point<2>(0.3, 0.9), Point<2>(-0.5, 2.), Point<2>(0.77, 0.01)})
@@ -95,9 +95,15 @@ TEST(SeparateInTime, FindsTheRankAndReproducesF)
   // a pulse travelling with t is not a short sum of products
   const auto pulse = [](const Point<2> &x, double t)
   { return std::exp(-(x[0] - t) * (x[0] - t) / 0.01); };
-  EXPECT_FALSE(separate_in_time(pulse, true, points, 1., terms));
+  EXPECT_FALSE(separate_in_time(pulse, true, points, {}, 1., terms));
+  // a narrow source between the sample points is seen at the dense check points
+  const Point<2> x0(0.0125, 0.5);
+  const auto hidden = [&](const Point<2> &x, double t)
+  { return std::sin(t) * x[0] + std::cos(t) * std::exp(-x.distance_square(x0) / 1e-6); };
+  EXPECT_TRUE(separate_in_time(hidden, true, points, {}, 1., terms));
+  EXPECT_FALSE(separate_in_time(hidden, true, points, {x0}, 1., terms));
   // no t: one term
-  ASSERT_TRUE(separate_in_time(pulse, false, points, 1., terms));
+  ASSERT_TRUE(separate_in_time(pulse, false, points, {}, 1., terms));
   ASSERT_EQ(terms.size(), 1u);
   EXPECT_EQ(terms[0].a(0.7) * terms[0].g(Point<2>(0.2, 0.)), pulse(Point<2>(0.2, 0.), 0.));
   // the custom moving hump's f (900 characters) is two products

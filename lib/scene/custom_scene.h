@@ -63,9 +63,10 @@ public:
   /// True if t appears in b or alpha.
   bool coefficients_depend_on_time() const override { return time_dependent; }
   double rhs(const dealii::Point<2> &x, double t) const override;
-  /// f as a_k(t) g_k(x) where that reproduces f at sample points to 1e-11 of max |f|
-  /// and b and alpha do not depend on t (lib/scene/separable.h); the loads are then
-  /// assembled once per mesh.
+  /// f as a_k(t) g_k(x) where that reproduces f to 1e-11 of max |f| at the sample
+  /// points and on a 4 x 4 grid in every cell of the refined copy of the domain, and b
+  /// and alpha do not depend on t (lib/scene/separable.h); the loads are then assembled
+  /// once per mesh.
   bool separable_rhs(std::vector<LoadTerm<2>> &terms) const override
   {
     terms = load_terms;

@@ -127,7 +127,8 @@ struct TimeCoefficients
 } // namespace separable_detail
 
 bool separate_in_time(const std::function<double(const Point<2> &, double)> &f,
-                      bool uses_t, const std::vector<Point<2>> &points, double end_time,
+                      bool uses_t, const std::vector<Point<2>> &points,
+                      const std::vector<Point<2>> &check_points, double end_time,
                       std::vector<LoadTerm<2>> &terms, unsigned int max_terms)
 {
   using namespace separable_detail;
@@ -192,6 +193,28 @@ bool separate_in_time(const std::function<double(const Point<2> &, double)> &f,
       for (std::size_t l = 0; l < k; ++l)
         g += a[l] * F[cols[l]][i];
       if (!(std::abs(g - exact[i]) <= 1e-11 * scale))
+        return false;
+    }
+  }
+  // ... and at the dense check points, at three times that were not sampled
+  std::vector<double> check_times;
+  std::vector<Vector<double>> check_a;
+  for (const double s : {0.1234, 0.5678, 0.9012})
+  {
+    check_times.push_back(s * end_time);
+    check_a.push_back(coefficients->at(check_times.back()));
+  }
+  std::vector<double> g_x(k);
+  for (const auto &x : check_points)
+  {
+    for (std::size_t l = 0; l < k; ++l)
+      g_x[l] = f(x, times[cols[l]]);
+    for (std::size_t j = 0; j < check_times.size(); ++j)
+    {
+      double g = 0;
+      for (std::size_t l = 0; l < k; ++l)
+        g += check_a[j][l] * g_x[l];
+      if (!(std::abs(g - f(x, check_times[j])) <= 1e-11 * scale))
         return false;
     }
   }
