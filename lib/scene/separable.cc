@@ -31,7 +31,7 @@ double dot(const Column &a, const Column &b)
 std::vector<std::size_t> pivot_columns(const std::vector<Column> &F, unsigned int max_terms,
                                        double tol)
 {
-  std::vector<Column> rest = F, basis;
+  std::vector<Column> rest = F;
   double largest = 0;
   for (const auto &c : F)
     largest = std::max(largest, std::sqrt(dot(c, c)));
@@ -91,10 +91,11 @@ std::vector<std::size_t> pivot_rows(const std::vector<Column> &F,
   }
   return rows;
 }
-/// a(t) = M^{-1} f(x_k, t), the time factors of all terms at once; the last t's factors
-/// are kept per thread (the terms ask for them one after the other at the same t).
+
 std::atomic<std::uint64_t> next_decomposition_id{1};
 
+/// a(t) = M^{-1} f(x_k, t), the time factors of all terms at once; the last t's factors
+/// are kept per thread (the terms ask for them one after the other at the same t).
 struct TimeCoefficients
 {
   std::function<double(const Point<2> &, double)> f;
