@@ -135,6 +135,13 @@ TEST(CustomScene, MeshFileWithManifoldsGivesHemkersMesh)
   EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 7: polar 0, 0"})
                 .find("boundary id 7 in key 'scene.manifolds' is not one of the domain"),
             std::string::npos);
+  // the inflow line x = -3 is no circle about the origin
+  EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 1: polar 0, 0"})
+                .find("expected one circle about the centre"),
+            std::string::npos);
+  EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 4: polar 0.1, 0"})
+                .find("expected one circle about the centre"),
+            std::string::npos);
   EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 4: transfinite"})
                 .find("in key 'scene.manifolds'; expected"),
             std::string::npos);

@@ -8,6 +8,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <algorithm>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -73,6 +74,27 @@ std::vector<ManifoldItem> parse_manifolds(const std::string &text,
           parse_double(xy[1], c[1]) != NumberStatus::ok)
         throw InputError(bad + " (polar needs its centre, two numbers x, y)");
       m.center = Point<2>(c[0], c[1]);
+      if (!m.on_cells) // the faces must lie on one circle about the centre
+      {
+        double r_min = std::numeric_limits<double>::max(), r_max = 0;
+        for (const auto &face : mesh.active_face_iterators())
+          if (face->at_boundary() &&
+              std::find(m.ids.begin(), m.ids.end(), face->boundary_id()) != m.ids.end())
+            for (unsigned int v = 0; v < 2; ++v)
+            {
+              r_min = std::min(r_min, face->vertex(v).distance(m.center));
+              r_max = std::max(r_max, face->vertex(v).distance(m.center));
+            }
+        if (r_max - r_min > 1e-8 * r_max)
+        {
+          std::ostringstream d;
+          d << r_min << " to " << r_max;
+          throw InputError(where + ": invalid item '" + item +
+                           "' in key 'scene.manifolds': the vertices of these boundary "
+                           "faces lie at distances " + d.str() + " from (" + xy[0] +
+                           ", " + xy[1] + "); expected one circle about the centre");
+        }
+      }
     }
     else
       throw InputError(bad);
