@@ -132,22 +132,24 @@ TEST(CustomScene, MeshFileWithManifoldsGivesHemkersMesh)
         on_circle = std::max(on_circle, std::abs(ca->vertex(v).norm() - 1.));
     }
   EXPECT_LT(on_circle, 1e-14);
-  EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 7: polar 0, 0"})
-                .find("boundary id 7 in key 'scene.manifolds' is not one of the domain"),
-            std::string::npos);
-  // the inflow line x = -3 is no circle about the origin
-  EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 1: polar 0, 0"})
-                .find("expected one circle about the centre"),
-            std::string::npos);
-  EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 4: polar 0.1, 0"})
-                .find("expected one circle about the centre"),
-            std::string::npos);
-  EXPECT_NE(error_of("custom_hemker.json", {"scene.manifolds=boundary 4: transfinite"})
-                .find("in key 'scene.manifolds'; expected"),
-            std::string::npos);
-  EXPECT_NE(error_of("custom_example.json", {"scene.manifolds=cells 0: transfinite"})
-                .find("key 'scene.manifolds' is for a mesh file"),
-            std::string::npos);
+  // bad items: each message names the key and what was expected
+  struct Bad
+  {
+    std::string config, item, message;
+  };
+  const std::vector<Bad> bad{
+      {"custom_hemker.json", "boundary 7: polar 0, 0",
+       "boundary id 7 in key 'scene.manifolds' is not one of the domain"},
+      // the inflow line x = -3 is no circle about the origin
+      {"custom_hemker.json", "boundary 1: polar 0, 0", "expected one circle about the centre"},
+      {"custom_hemker.json", "boundary 4: polar 0.1, 0", "expected one circle about the centre"},
+      {"custom_hemker.json", "boundary 4: transfinite", "in key 'scene.manifolds'; expected"},
+      {"custom_example.json", "cells 0: transfinite", "key 'scene.manifolds' is for a mesh file"}};
+  for (const auto &[config, item, message] : bad)
+  {
+    const std::string error = error_of(config, {"scene.manifolds=" + item});
+    EXPECT_NE(error.find(message), std::string::npos) << item << ": " << error;
+  }
 }
 
 TEST(CustomScene, ConsistentDataPassTheCheck)
