@@ -9,6 +9,7 @@
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 
 #include <algorithm>
@@ -166,11 +167,10 @@ struct CustomScene::Geometry
   {
     if (generator.empty())
     {
-      // copy_triangulation copies the mesh smoothing too: keep the caller's (the DWR
-      // meshes' anisotropic closure)
-      const auto smoothing = tria.get_mesh_smoothing();
-      tria.copy_triangulation(coarse);
-      tria.set_mesh_smoothing(smoothing);
+      // created from the file's cells, not copied: copy_triangulation would copy the
+      // mesh smoothing too, and `tria` keeps its own (the DWR meshes' anisotropic closure)
+      const auto [vertices, cells, faces] = GridTools::get_coarse_mesh_description(coarse);
+      tria.create_triangulation(vertices, cells, faces);
       attach_manifolds(manifolds, tria);
     }
     else
