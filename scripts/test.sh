@@ -11,8 +11,9 @@ start=$(date +%s)
 echo "== Release tests: $(($(date +%s) - start)) s"
 
 # the unit tests both extra stages run (test names, ctest -R)
-UNIT_TARGETS="test_temporal_basis test_slab test_operators test_estimator test_probes test_refinement"
-UNIT_TESTS="TemporalBasis|Slab|Exactness|Lifts|Restriction|RadauReconstruction|ExactGoal|Localization|Estimator|ShortVectors|HemkerMesh|Probes|Marking|Closure"
+UNIT_TARGETS="test_temporal_basis test_slab test_operators test_estimator test_probes test_refinement
+  test_custom_scene"
+UNIT_TESTS="TemporalBasis|Slab|Exactness|Lifts|Restriction|RadauReconstruction|ExactGoal|Localization|Estimator|ShortVectors|HemkerMesh|Probes|Marking|Closure|CustomScene|SeparateInTime"
 # Both extra builds compile the library as unity sources (batches of 7 files): the
 # deal.II headers are parsed once per batch rather than once per file.
 UNITY="-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=7"
