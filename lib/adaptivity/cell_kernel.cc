@@ -67,10 +67,10 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
   {
     coefficients_at_q.clear();
     for (unsigned int q = 0; q < quad.size(); ++q)
-      coefficients_at_q.push_back(weak_form::coefficients(scene, fv_p.quadrature_point(q), 0.));
-  }
-  if (constant_coefficients)
+      coefficients_at_q.push_back(
+          weak_form::coefficients(scene, fv_p.quadrature_point(q), 0.));
     build_adjoint_matrices();
+  }
   idx.resize(fe_p.n_dofs_per_cell());
   cell->get_dof_indices(idx);
   pieces.clear();

@@ -1,6 +1,7 @@
 #include "scene/expression.h"
 
 #include "base/errors.h"
+#include "base/text.h"
 
 #include <muParser.h>
 
@@ -68,12 +69,6 @@ std::unique_ptr<Slot> make_slot(const std::string &text,
   return slot;
 }
 
-std::string trim(const std::string &s)
-{
-  const auto a = s.find_first_not_of(" \t\n\r"), b = s.find_last_not_of(" \t\n\r");
-  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
-}
-
 bool is_name(const std::string &s)
 {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_'))
@@ -93,7 +88,7 @@ Expression::Expression(const std::string &text, const std::vector<std::string> &
 {
   const std::string bad =
       where + ": invalid expression '" + text + "' for key '" + key + "'";
-  if (trim(text).empty())
+  if (trim_ws(text).empty())
     throw InputError(bad + ": the expression is empty");
   try
   {
@@ -150,19 +145,19 @@ Constants parse_constants(const std::string &text, const Constants &predefined,
   while (start <= text.size())
   {
     const auto comma = text.find(',', start);
-    item = trim(text.substr(start, comma == std::string::npos ? std::string::npos
+    item = trim_ws(text.substr(start, comma == std::string::npos ? std::string::npos
                                                               : comma - start));
     start = comma == std::string::npos ? text.size() + 1 : comma + 1;
     if (item.empty())
     {
-      if (comma == std::string::npos && defined.empty() && trim(text).empty())
+      if (comma == std::string::npos && defined.empty() && trim_ws(text).empty())
         break;
       throw InputError(where + ": invalid value '" + text + "' for key '" + key +
                        "'; expected comma-separated definitions name = value, found an "
                        "empty one");
     }
     const auto eq = item.find('=');
-    const std::string name = trim(item.substr(0, eq));
+    const std::string name = trim_ws(item.substr(0, eq));
     if (eq == std::string::npos || !is_name(name))
       throw InputError(where + ": invalid definition '" + item + "' in key '" + key +
                        "'; expected name = value with a name of letters, digits and _ "
