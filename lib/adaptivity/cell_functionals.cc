@@ -21,17 +21,19 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
   const unsigned int nq = quad.size();
   rho.reset(g.size(), nw);
   supg.reset(g.size(), nw);
+  if (constant_coefficients)
+  {
+    primal_functionals_by_matrices(t0, tau, Un, Uprev, rho, supg);
+    return;
+  }
   const double delta = primal.bounded_delta(delta_h, tau);
   Vector<double> &c = scratch[0], &ct = scratch[1];
   c.reinit(np, true);
   ct.reinit(np, true);
-  std::vector<double> &a = load_factors;
-  a.resize(load_terms.size());
   for (unsigned int m = 0; m < g.size(); ++m)
   {
     const double t = t0 + g[m] * tau, wt = tau * omega[m];
-    for (unsigned int j = 0; j < a.size(); ++j)
-      a[j] = load_terms[j].a(t);
+    const std::vector<double> &a = load_factors_at(t);
     combine(Un, idx, ell[m], 1., c);
     combine(Un, idx, dell[m], 1. / tau, ct);
     for (unsigned int q = 0; q < nq; ++q)
@@ -66,36 +68,22 @@ void CellKernel<dim>::add_face_terms(unsigned int m, double t, double wt,
                                      SlabFunctional &rho) const
 {
   const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell();
-  const double eps = scene.epsilon;
   Vector<double> &cn = scratch[2];
-  // faces: half flux jump (interior), Neumann mismatch, -eps d_n u (Dirichlet)
+  sv::add_vmult(rho.val[m], wt, own_flux, c);
   for (const auto &pc : pieces)
-  {
     if (pc.kind == 0)
     {
       cn.reinit(np, true);
       combine(Un, pc.nb_dofs, ell[m], 1., cn);
+      sv::add_vmult(rho.val[m], wt, pc.nb_flux, cn);
     }
-    for (unsigned int q = 0; q < pc.JxW.size(); ++q)
-    {
-      double gk = 0, gn = 0;
-      for (unsigned int l = 0; l < np; ++l)
-        gk += c(l) * pc.gradn(l, q);
-      double flux;
-      if (pc.kind == 0)
+    else if (pc.kind == 1) // the Neumann data
+      for (unsigned int q = 0; q < pc.JxW.size(); ++q)
       {
-        for (unsigned int l = 0; l < np; ++l)
-          gn += cn(l) * pc.nb_gradn(l, q);
-        flux = -0.5 * eps * (gk - gn);
+        const double data = scene.boundary_flux(pc.x[q], pc.normal[q], t, pc.id);
+        for (unsigned int l = 0; l < nw; ++l)
+          rho.val[m](l) += wt * data * pc.JxW[q] * pc.w(l, q);
       }
-      else if (pc.kind == 1)
-        flux = scene.boundary_flux(pc.x[q], pc.normal[q], t, pc.id) - eps * gk;
-      else
-        flux = -eps * gk;
-      for (unsigned int l = 0; l < nw; ++l)
-        rho.val[m](l) += wt * flux * pc.JxW[q] * pc.w(l, q);
-    }
-  }
 }
 
 template <int dim>
@@ -130,28 +118,38 @@ void CellKernel<dim>::add_temporal_jump(double t0, double delta, const Vector<do
 }
 
 template <int dim>
-void CellKernel<dim>::adjoint_functional(double t0, double tau, const SlabFunction &zt,
-                                         bool supg, SlabFunctional &A) const
+void CellKernel<dim>::adjoint_functional(double t0, double tau,
+                                         const std::vector<Vector<double>> &nodal,
+                                         const SlabFunction &zt, bool supg,
+                                         SlabFunctional &A) const
 {
   const unsigned int nw = fe_w.n_dofs_per_cell(), nq = quad.size();
   A.reset(g.size(), nw);
   if (constant_coefficients)
   {
     // the same functional through the cell matrices: val = wt K z, dt = wt M z
-    // (S' matrices per unit delta_K)
+    // (S' matrices per unit delta_K), with K z and M z formed once per temporal node
     const auto &Kc = supg ? adj_matrices[2] : adj_matrices[0],
                &Mc = supg ? adj_matrices[3] : adj_matrices[1];
     const double scale = supg ? primal.bounded_delta(delta_h, tau) : 1.;
+    auto &kz = nodal_scratch[0], &mz = nodal_scratch[1];
+    kz.resize(nodal.size());
+    mz.resize(nodal.size());
+    for (unsigned int k = 0; k < nodal.size(); ++k)
+    {
+      sv::vmult(kz[k], Kc, nodal[k]);
+      sv::vmult(mz[k], Mc, nodal[k]);
+      sv::add(A.jump, scale * basis.left_trace()[k], mz[k]);
+    }
     for (unsigned int m = 0; m < g.size(); ++m)
     {
       const double wt = tau * omega[m] * scale;
-      Kc.vmult(A.val[m], zt.val[m]);
-      sv::scale(A.val[m], wt);
-      Mc.vmult(A.dt[m], zt.val[m]);
-      sv::scale(A.dt[m], wt);
+      for (unsigned int k = 0; k < nodal.size(); ++k)
+      {
+        sv::add(A.val[m], wt * ell[m][k], kz[k]);
+        sv::add(A.dt[m], wt * ell[m][k], mz[k]);
+      }
     }
-    Mc.vmult(A.jump, zt.plus);
-    sv::scale(A.jump, scale);
     return;
   }
   const double delta = primal.bounded_delta(delta_h, tau);
@@ -207,8 +205,10 @@ void CellKernel<dim>::goal_functional(double tau, const Vector<double> &jt,
 template void CellKernel<2>::primal_functionals(double, double, const Vector<double> &,
                                                 const Vector<double> *, SlabFunctional &,
                                                 SlabFunctional &) const;
-template void CellKernel<2>::adjoint_functional(double, double, const SlabFunction &,
-                                                bool, SlabFunctional &) const;
+template void CellKernel<2>::adjoint_functional(double, double,
+                                                const std::vector<Vector<double>> &,
+                                                const SlabFunction &, bool,
+                                                SlabFunctional &) const;
 template void CellKernel<2>::goal_functional(double, const Vector<double> &,
                                              SlabFunctional &) const;
 } // namespace anisodwr

@@ -54,6 +54,16 @@ double CellKernel<dim>::load(unsigned int q, double t, const std::vector<double>
   return f;
 }
 
+template <int dim>
+const std::vector<double> &CellKernel<dim>::load_factors_at(double t) const
+{
+  auto [it, inserted] = load_factors.try_emplace(t);
+  if (inserted)
+    for (const auto &term : load_terms)
+      it->second.push_back(term.a(t));
+  return it->second;
+}
+
 template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
 {
   K = cell;
@@ -69,11 +79,12 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
     for (unsigned int q = 0; q < quad.size(); ++q)
       coefficients_at_q.push_back(
           weak_form::coefficients(scene, fv_p.quadrature_point(q), 0.));
-    build_adjoint_matrices();
+    build_cell_matrices();
   }
   idx.resize(fe_p.n_dofs_per_cell());
   cell->get_dof_indices(idx);
   pieces.clear();
+  own_flux.reinit(fe_w.n_dofs_per_cell(), fe_p.n_dofs_per_cell());
   for (unsigned int f = 0; f < GeometryInfo<dim>::faces_per_cell; ++f)
   {
     if (cell->at_boundary(f))
@@ -164,6 +175,22 @@ void CellKernel<dim>::add_piece(const FEFaceValuesBase<dim> &fp,
         pc.nb_gradn(l, q) = fn->shape_grad(l, qn) * fp.normal_vector(q);
     }
   }
+  // the flux terms as matrices: -eps/2 (d_n u - d_n u_nb, w) on interior faces,
+  // -eps (d_n u, w) on the boundary (the Neumann data is added per point)
+  const double eps = scene.epsilon, own = kind == 0 ? -0.5 * eps : -eps;
+  if (fn)
+    pc.nb_flux.reinit(nw, np);
+  for (unsigned int q = 0; q < nq; ++q)
+    for (unsigned int l = 0; l < nw; ++l)
+    {
+      const double w = pc.JxW[q] * pc.w(l, q);
+      for (unsigned int k = 0; k < np; ++k)
+      {
+        own_flux(l, k) += own * w * pc.gradn(k, q);
+        if (fn)
+          pc.nb_flux(l, k) += 0.5 * eps * w * pc.nb_gradn(k, q);
+      }
+    }
   pieces.push_back(std::move(pc));
 }
 
@@ -186,7 +213,9 @@ void CellKernel<dim>::combine(const Vector<double> &U,
 template CellKernel<2>::CellKernel(const Space<2> &, const FE_Q<2> &,
                                    const TemporalBasis &);
 template void CellKernel<2>::reinit(const cell_iterator &);
-template double CellKernel<2>::load(unsigned int, double, const std::vector<double> &) const;
+template const std::vector<double> &CellKernel<2>::load_factors_at(double) const;
+template double CellKernel<2>::load(unsigned int, double,
+                                    const std::vector<double> &) const;
 template void CellKernel<2>::combine(const Vector<double> &,
                                      const std::vector<types::global_dof_index> &,
                                      const std::vector<double> &, double,

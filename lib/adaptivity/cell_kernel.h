@@ -4,8 +4,8 @@
 // estimator.h).
 //   cell_kernel.cc               the cell, its faces and neighbours (hanging nodes)
 //   cell_functionals.cc          rho(u), S(u), A(.)(z), S'(., z) and J' on the cell
-//   adjoint_cell_matrices.cc     A and S' as cell matrices (coefficients constant in t)
-//   slab_functions.cc            slab functions in W-local coefficients
+//   cell_matrices.cc             rho, S, A and S' as cell matrices (coefficients constant
+//   in t) slab_functions.cc            slab functions in W-local coefficients
 #include "space/space.h"
 #include "space/weak_form.h"
 #include "time/temporal_basis.h"
@@ -18,6 +18,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <unordered_map>
 #include <vector>
 
 namespace anisodwr
@@ -73,9 +74,11 @@ public:
                           SlabFunctional &supg) const;
 
   /// A(.)(zt) (supg == false) or S'(., y = zt) (supg == true) on the slab, for zt given
-  /// in W-local coefficients at the Gauss points (val) and at t_{n-1}^+ (plus).
-  void adjoint_functional(double t0, double tau, const SlabFunction &zt, bool supg,
-                          SlabFunctional &A) const;
+  /// by its W-local nodal vectors and as their slab function (values at the Gauss points
+  /// and at t_{n-1}^+); coefficients constant in time use the nodal vectors, others zt.
+  void adjoint_functional(double t0, double tau,
+                          const std::vector<dealii::Vector<double>> &nodal,
+                          const SlabFunction &zt, bool supg, SlabFunctional &A) const;
 
   /// J'(v) on this cell: the part over I at the Gauss points, the end part at T.
   void goal_functional(double tau, const dealii::Vector<double> &jt,
@@ -84,13 +87,16 @@ public:
 private:
   struct Piece
   {
-    int kind; // 0 interior, 1 Neumann, 2 Dirichlet
+    int kind;                          // 0 interior, 1 Neumann, 2 Dirichlet
     dealii::types::boundary_id id = 0; ///< the boundary id (kinds 1 and 2)
     std::vector<double> JxW;
     dealii::FullMatrix<double> w, gradn, nb_gradn;
     std::vector<dealii::Point<dim>> x;
     std::vector<dealii::Tensor<1, dim>> normal;
     std::vector<dealii::types::global_dof_index> nb_dofs;
+    /// interior pieces: the neighbour's half of the flux jump, +eps/2 (d_n u_nb, w),
+    /// as a matrix on the neighbour's coefficients
+    dealii::FullMatrix<double> nb_flux;
   };
 
   std::vector<dealii::types::global_dof_index>
@@ -108,7 +114,8 @@ private:
                dealii::Vector<double> &c) const;
 
   /// rho += the face terms at Gauss point m (time t, weight wt) for u's coefficients c:
-  /// half the flux jump (interior), the Neumann mismatch, -eps d_n u (Dirichlet).
+  /// half the flux jump (interior), the Neumann mismatch, -eps d_n u (Dirichlet);
+  /// the cell's own side through own_flux, the neighbours' through Piece::nb_flux.
   void add_face_terms(unsigned int m, double t, double wt,
                       const dealii::Vector<double> &Un, const dealii::Vector<double> &c,
                       SlabFunctional &rho) const;
@@ -137,20 +144,36 @@ private:
   std::vector<dealii::types::global_dof_index> idx;
   std::vector<Piece> pieces;
   mutable std::array<dealii::Vector<double>, 3> scratch; // cell-local coefficient buffers
+  mutable std::array<std::vector<dealii::Vector<double>>, 2> nodal_scratch;
 
   /// For coefficients constant in time, A(.)(z) and S'(., z) are cell matrices applied
   /// to z (per unit temporal weight): [0] A's val part, [1] A's dt/jump part, [2] S'
   /// val part, [3] S' dt/jump part (rows: the first slot, columns: z).
   const bool constant_coefficients;
   std::array<dealii::FullMatrix<double>, 4> adj_matrices;
+  /// rho(u) and S(u) as cell matrices on u's coefficients, per unit temporal weight (S
+  /// per unit delta_K), for coefficients constant in time: [0] rho from u (-(L u, w)),
+  /// [1] rho from d_t u and from the jump u^+ - u^- (-(u, w)), [2] S from u
+  /// ((L u, b.grad w)), [3] S from d_t u and the jump ((u, b.grad w)); with a separable
+  /// load, (g_j, w) and (g_j, b.grad w) per term j.
+  std::array<dealii::FullMatrix<double>, 4> primal_matrices;
+  std::vector<dealii::Vector<double>> load_rho, load_supg;
+  /// the faces' terms from the cell's own side: -eps (d_n u, w), halved on interior faces
+  dealii::FullMatrix<double> own_flux;
+  /// rho and S on the slab through primal_matrices (constant_coefficients)
+  void primal_functionals_by_matrices(double t0, double tau,
+                                      const dealii::Vector<double> &Un,
+                                      const dealii::Vector<double> *Uprev,
+                                      SlabFunctional &rho, SlabFunctional &supg) const;
   /// eps, b and alpha at the cell's quadrature points, evaluated once per cell where
   /// they do not depend on t (constant_coefficients)
   std::vector<weak_form::Coefficients<dim>> coefficients_at_q;
   /// eps, b and alpha at quadrature point q and time t
   weak_form::Coefficients<dim> coefficients(unsigned int q, double t) const
   {
-    return constant_coefficients ? coefficients_at_q[q]
-                                 : weak_form::coefficients(scene, fv_p.quadrature_point(q), t);
+    return constant_coefficients
+               ? coefficients_at_q[q]
+               : weak_form::coefficients(scene, fv_p.quadrature_point(q), t);
   }
 
   /// f = sum_j a_j(t) g_j(x) where the scene gives it (Scene::separable_rhs): g_j at the
@@ -158,10 +181,12 @@ private:
   bool separable_load = false;
   std::vector<LoadTerm<dim>> load_terms;
   std::vector<std::vector<double>> load_at_q; // [j][q]
-  mutable std::vector<double> load_factors;    // a_j(t) at the current Gauss point
+  /// a_j(t) by t: the same few temporal Gauss points recur on every cell
+  mutable std::unordered_map<double, std::vector<double>> load_factors;
+  const std::vector<double> &load_factors_at(double t) const;
   /// f at quadrature point q and time t, with a[j] = a_j(t) (separable_load)
   double load(unsigned int q, double t, const std::vector<double> &a) const;
-  void build_adjoint_matrices();
+  void build_cell_matrices();
 };
 
 /// W-local coefficients of temporal node k of an interleaved slab vector.
@@ -175,9 +200,6 @@ void gather(const dealii::Vector<double> &U,
 template <int dim>
 void slab_function(const CellKernel<dim> &kernel, const TemporalBasis &basis, double tau,
                    const std::vector<dealii::Vector<double>> &V, SlabFunction &f);
-
-/// f = R f (each vector of f that is set).
-void transform(const dealii::FullMatrix<double> &R, SlabFunction &f);
 
 /// d = a (d's vectors are reused).
 void assign(const SlabFunction &a, SlabFunction &d);

@@ -49,8 +49,8 @@ enum class ToleranceMeasure
 
 inline const std::vector<Named<ToleranceMeasure>> &names(ToleranceMeasure)
 {
-  static const std::vector<Named<ToleranceMeasure>> table{{ToleranceMeasure::eta, "eta"},
-                                                          {ToleranceMeasure::parts, "parts"}};
+  static const std::vector<Named<ToleranceMeasure>> table{
+      {ToleranceMeasure::eta, "eta"}, {ToleranceMeasure::parts, "parts"}};
   return table;
 }
 

@@ -95,6 +95,10 @@ private:
   std::vector<types::global_dof_index> idx_q;
   SlabFunctional rho, supg, A_rh, S_rh, A_z, Jf;
   std::vector<Vector<double>> zk, uk, vk;
+  /// z's nodal vectors of slab n+1 (gathered for z(t_n^+), reused by slab n+1) and
+  /// each direction's I_2h,i u - u at the last node of slab n (v(t_n^-) of slab n+1)
+  std::vector<Vector<double>> zk_next, v_last;
+  std::vector<Vector<double>> rzk; // R_h or R_i applied to zk
   Vector<double> z_next, u_prev, tmp, vT, vz, vu;
   SlabFunction z, u, Rhz, Riz, dz, v, ez, eu;
   std::vector<LocalMap> lift;
@@ -119,7 +123,8 @@ IndicatorAssembly<dim>::IndicatorAssembly(
       m1(basis.n_dofs()), nw(fe_w.n_dofs_per_cell()), zT(zT), u0(u0),
       E_z(kernel.n_points()), E_u(kernel.n_points()), m2(hi ? hi->basis.n_dofs() : 0),
       hk(m2), e_prev(nw), idx_q(adjoint.finite_element().n_dofs_per_cell()), zk(m1),
-      uk(m1), vk(m1), z_next(nw), u_prev(nw), tmp(nw), vT(nw), vz(nw), vu(nw), lift(dim)
+      uk(m1), vk(m1), zk_next(m1), v_last(dim), rzk(m1), z_next(nw), u_prev(nw), tmp(nw),
+      vT(nw), vz(nw), vu(nw), lift(dim)
 {
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
     for (unsigned int d = 0; d < 2; ++d)
@@ -187,11 +192,13 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   gather_slab(n);
 
   slab_function(kernel, basis, tau, zk, z);
-  assign(z, Rhz);
-  transform(ops.restriction(dim), Rhz);
-  kernel.adjoint_functional(t0, tau, Rhz, false, A_rh);
-  kernel.adjoint_functional(t0, tau, Rhz, true, S_rh);
-  kernel.adjoint_functional(t0, tau, z, false, A_z);
+  // R_h z, from R_h applied to z's nodal vectors (R_h acts in space only)
+  for (unsigned int k = 0; k < m1; ++k)
+    sv::vmult(rzk[k], ops.restriction(dim), zk[k]);
+  slab_function(kernel, basis, tau, rzk, Rhz);
+  kernel.adjoint_functional(t0, tau, rzk, Rhz, false, A_rh);
+  kernel.adjoint_functional(t0, tau, rzk, Rhz, true, S_rh);
+  kernel.adjoint_functional(t0, tau, zk, z, false, A_z);
   kernel.goal_functional(tau, jt, Jf);
   const bool last = n + 1 == N;
   slab_function(kernel, basis, tau, uk, u);
@@ -231,25 +238,31 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
 
 template <int dim> void IndicatorAssembly<dim>::gather_slab(unsigned int n)
 {
+  // The slabs run in order on a cell: slab n-1 gathered Z[n] (for z(t_{n-1}^+)) and
+  // U[n-1]'s last node (its own u), so each slab vector is gathered once per cell.
   const auto &idx = kernel.dof_indices();
-  for (unsigned int k = 0; k < m1; ++k)
+  if (n > 0)
   {
-    gather(Z[n], idx_q, m1, k, Q, zk[k]);
-    gather(U[n], idx, m1, k, P, uk[k]);
+    sv::copy(u_prev, uk[m1 - 1]);
+    zk.swap(zk_next);
   }
+  else
+  {
+    gather(u0, idx, 1, 0, P, u_prev);
+    for (unsigned int k = 0; k < m1; ++k)
+      gather(Z[n], idx_q, m1, k, Q, zk[k]);
+  }
+  for (unsigned int k = 0; k < m1; ++k)
+    gather(U[n], idx, m1, k, P, uk[k]);
   sv::zero(z_next);
   if (n + 1 < N)
     for (unsigned int k = 0; k < m1; ++k)
     {
-      gather(Z[n + 1], idx_q, m1, k, Q, tmp);
-      sv::add(z_next, basis.left_trace()[k], tmp);
+      gather(Z[n + 1], idx_q, m1, k, Q, zk_next[k]);
+      sv::add(z_next, basis.left_trace()[k], zk_next[k]);
     }
   else if (zT.size())
     gather(zT, idx_q, 1, 0, Q, z_next);
-  if (n > 0)
-    gather(U[n - 1], idx, m1, m1 - 1, P, u_prev);
-  else
-    gather(u0, idx, 1, 0, P, u_prev);
 }
 
 template <int dim>
@@ -258,8 +271,9 @@ double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned in
                                                      double &lift_size, double &half_rho,
                                                      Indicators<dim> &ind)
 {
-  assign(z, Riz);
-  transform(ops.restriction(i), Riz);
+  for (unsigned int k = 0; k < m1; ++k)
+    sv::vmult(rzk[k], ops.restriction(i), zk[k]);
+  slab_function(kernel, basis, tau, rzk, Riz);
   difference(z, Riz, dz);
   half_rho = 0.5 * apply(rho, dz, false);
   ind.eta_h_rho += half_rho;
@@ -276,12 +290,10 @@ double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned in
   for (const auto &vv : v.val)
     lift_size += tau * sv::norm_sqr(vv);
   if (n > 0)
-  {
-    lift[i].apply(U[n - 1], v.minus, m1, m1 - 1);
-    sv::subtract(v.minus, u_prev);
-  }
+    sv::copy(v.minus, v_last[i]); // I_2h,i u - u at U[n-1]'s last node
   else
     v.minus.reinit(0);
+  sv::copy(v_last[i], vk[m1 - 1]);
   double jv = apply(Jf, v, false); // J' over I
   if (last && jT.size())
   {
@@ -346,6 +358,12 @@ double IndicatorAssembly<dim>::higher_order_errors(unsigned int n, double tau, b
   // E u := u_r+1: values and derivatives at the Gauss points, the jump of
   // e = u_r+1 - u at t_{n-1} (e(t_0^-) = 0: both start from u_0), and J_T(e(T))
   const auto &idx = kernel.dof_indices();
+  if (n > 0) // u_r+1(t_{n-1}^-) from slab n-1's nodal vectors, still in hk
+  {
+    e_prev = 0.;
+    for (unsigned int k = 0; k < m2; ++k)
+      e_prev.add(hi->basis.right_trace()[k], hk[k]);
+  }
   for (unsigned int k = 0; k < m2; ++k)
     gather(hi->U[n], idx, m2, k, P, hk[k]);
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
@@ -368,12 +386,6 @@ double IndicatorAssembly<dim>::higher_order_errors(unsigned int n, double tau, b
   eu.plus -= u.plus;
   if (n > 0)
   {
-    e_prev = 0.;
-    for (unsigned int k = 0; k < m2; ++k)
-    {
-      gather(hi->U[n - 1], idx, m2, k, P, tmp);
-      e_prev.add(hi->basis.right_trace()[k], tmp);
-    }
     e_prev -= u_prev; // u(t_{n-1}^-)
     eu.plus -= e_prev;
   }
@@ -519,9 +531,10 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
     for (const auto id : primal.scene.dirichlet_ids)
     {
       const ScalarFunctionFromFunctionObject<dim> g(
-          [&](const Point<dim> &x) { return primal.scene.boundary_value(x, mesh.start(0), id); });
-      VectorTools::interpolate_boundary_values(primal.mapping(), primal.dof_handler(), id, g,
-                                               boundary);
+          [&](const Point<dim> &x)
+          { return primal.scene.boundary_value(x, mesh.start(0), id); });
+      VectorTools::interpolate_boundary_values(primal.mapping(), primal.dof_handler(), id,
+                                               g, boundary);
     }
     for (const auto &[i, value] : boundary)
       u0[i] = value;

@@ -31,13 +31,14 @@ void for_cells(const Space<dim> &primal, const Space<dim> &other,
   }
 }
 
+/// The slab function of V on the cell; its W-local nodal vectors go to vk.
 template <int dim>
-SlabFunction other_function(const CellKernel<dim> &kernel, const TemporalBasis &basis,
-                            double tau, const Vector<double> &V,
-                            const std::vector<types::global_dof_index> &idx,
-                            const FullMatrix<double> &to_w)
+SlabFunction
+other_function(const CellKernel<dim> &kernel, const TemporalBasis &basis, double tau,
+               const Vector<double> &V, const std::vector<types::global_dof_index> &idx,
+               const FullMatrix<double> &to_w, std::vector<Vector<double>> &vk)
 {
-  std::vector<Vector<double>> vk(basis.n_dofs());
+  vk.resize(basis.n_dofs());
   for (unsigned int k = 0; k < basis.n_dofs(); ++k)
     gather(V, idx, basis.n_dofs(), k, to_w, vk[k]);
   SlabFunction f;
@@ -61,9 +62,10 @@ std::vector<double> primal_form(const Space<dim> &primal, const Space<dim> &othe
               {
                 k.primal_functionals(mesh.start(n), mesh.tau(n), U[n],
                                      n ? &U[n - 1] : nullptr, rho, S);
-                out[n] +=
-                    apply(supg ? S : rho,
-                          other_function(k, basis, mesh.tau(n), W[n], idx, to_w), false);
+                std::vector<Vector<double>> wk;
+                out[n] += apply(
+                    supg ? S : rho,
+                    other_function(k, basis, mesh.tau(n), W[n], idx, to_w, wk), false);
               }
             });
   return out;
@@ -106,10 +108,11 @@ std::vector<double> LocalizedForms<dim>::adjoint_form(
               for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
               {
                 const double tau = mesh.tau(n);
-                k.adjoint_functional(mesh.start(n), tau,
-                                     other_function(k, basis, tau, Zt[n], idx, to_w),
-                                     supg_derivative, A);
-                SlabFunction v = other_function(k, basis, tau, V[n], idx, to_w);
+                std::vector<Vector<double>> zk, vk;
+                const SlabFunction z =
+                    other_function(k, basis, tau, Zt[n], idx, to_w, zk);
+                k.adjoint_functional(mesh.start(n), tau, zk, z, supg_derivative, A);
+                SlabFunction v = other_function(k, basis, tau, V[n], idx, to_w, vk);
                 if (n > 0)
                   gather(V[n - 1], idx, m1, m1 - 1, to_w, v.minus);
                 out[n] += apply(A, v, true);

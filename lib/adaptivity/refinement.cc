@@ -51,8 +51,9 @@ std::vector<unsigned int> bulk(const std::vector<double> &v, double theta)
 std::vector<unsigned int> selected(const std::vector<double> &v,
                                    const MarkingOptions &options)
 {
-  return options.marking_criterion == MarkingCriterion::bulk ? bulk(v, options.theta_h)
-                                                     : largest(v, options.theta_h);
+  return options.marking_criterion == MarkingCriterion::bulk
+             ? bulk(v, options.theta_h)
+             : largest(v, options.theta_h);
 }
 
 /// The refinement case of each active cell from the directional indicators
@@ -229,7 +230,8 @@ template <int dim> double max_hanging_gap(const Triangulation<dim> &tria)
       const Tensor<1, dim> off = (v - a) - ((v - a) * t) * t;
       double thin = 1e300;
       for (unsigned int s = 0; s < face->n_children(); ++s)
-        thin = std::min(thin, cell->neighbor_child_on_subface(f, s)->minimum_vertex_distance());
+        thin = std::min(thin,
+                        cell->neighbor_child_on_subface(f, s)->minimum_vertex_distance());
       worst = std::max(worst, off.norm() / thin);
     }
   return worst;

@@ -5,9 +5,11 @@
 // helpers do the same arithmetic in the same order, so their results are bit-identical
 // to deal.II's:
 // - element-wise operations are one multiply and/or add per entry, as in deal.II;
+// - matrix-vector products sum each row in its natural order;
 // - sums of fewer than 32 terms follow deal.II's accumulate_recursive (up to three
 //   chunks of 8 summed in turn, then the remainder, combined as there); longer vectors
 //   go to deal.II itself.
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
@@ -111,5 +113,55 @@ inline void zero(dealii::Vector<double> &y, std::size_t n)
     y.reinit(n);
   else
     zero(y);
+}
+/// y = s A x + (adding ? y : 0), A row-major as deal.II's FullMatrix. Four rows at a
+/// time, so that the row sums run side by side (each row sums in its natural order).
+inline void matrix_vector(dealii::Vector<double> &y, double s,
+                          const dealii::FullMatrix<double> &A,
+                          const dealii::Vector<double> &x, bool adding)
+{
+  const std::size_t m = A.m(), n = A.n();
+  const double *a = n ? &A(0, 0) : nullptr, *px = x.begin();
+  double *py = y.begin();
+  std::size_t i = 0;
+  for (; i + 4 <= m; i += 4, a += 4 * n)
+  {
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+    for (std::size_t j = 0; j < n; ++j)
+    {
+      s0 += a[j] * px[j];
+      s1 += a[n + j] * px[j];
+      s2 += a[2 * n + j] * px[j];
+      s3 += a[3 * n + j] * px[j];
+    }
+    py[i] = s * s0 + (adding ? py[i] : 0.);
+    py[i + 1] = s * s1 + (adding ? py[i + 1] : 0.);
+    py[i + 2] = s * s2 + (adding ? py[i + 2] : 0.);
+    py[i + 3] = s * s3 + (adding ? py[i + 3] : 0.);
+  }
+  for (; i < m; ++i, a += n)
+  {
+    double r = 0;
+    for (std::size_t j = 0; j < n; ++j)
+      r += a[j] * px[j];
+    py[i] = s * r + (adding ? py[i] : 0.);
+  }
+}
+
+/// y = A x (y reallocated only when its size differs)
+inline void vmult(dealii::Vector<double> &y, const dealii::FullMatrix<double> &A,
+                  const dealii::Vector<double> &x)
+{
+  if (y.size() != A.m())
+    y.reinit(A.m(), true);
+  matrix_vector(y, 1., A, x, false);
+}
+
+/// y += s A x
+inline void add_vmult(dealii::Vector<double> &y, double s,
+                      const dealii::FullMatrix<double> &A,
+                      const dealii::Vector<double> &x)
+{
+  matrix_vector(y, s, A, x, true);
 }
 } // namespace anisodwr::short_vectors

@@ -80,25 +80,6 @@ void slab_function(const CellKernel<dim> &kernel, const TemporalBasis &basis, do
     sv::add(f.plus, basis.left_trace()[k], V[k]);
 }
 
-void transform(const FullMatrix<double> &R, SlabFunction &f)
-{
-  auto one = [&](Vector<double> &v)
-  {
-    if (!v.size())
-      return;
-    thread_local Vector<double> t;
-    t.reinit(v.size(), true);
-    R.vmult(t, v);
-    v.swap(t);
-  };
-  for (auto &v : f.val)
-    one(v);
-  for (auto &v : f.dt)
-    one(v);
-  one(f.plus);
-  one(f.minus);
-}
-
 /// d = a (d's vectors are reused).
 void assign(const SlabFunction &a, SlabFunction &d)
 {

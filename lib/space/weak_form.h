@@ -2,7 +2,7 @@
 // The convection-diffusion-reaction + SUPG weak form, pointwise (doc/method.md §2-3).
 // Every integrand of the method is built from these terms: the spatial matrices and
 // loads (space.cc), the estimator's residuals and adjoint forms
-// (adaptivity/cell_functionals.cc, adaptivity/adjoint_cell_matrices.cc). A new
+// (adaptivity/cell_functionals.cc, adaptivity/cell_matrices.cc). A new
 // stabilization term (crosswind diffusion, shock capturing) is added here and in the
 // places that call supg_test(), and nowhere else.
 //

@@ -1,0 +1,153 @@
+// For coefficients constant in time, the primal residual rho(u) and the SUPG form S(u),
+// the adjoint form A(.)(z) and the SUPG derivative S'(., z) on a cell are cell matrices
+// applied to cell coefficients (CellKernel::primal_matrices, adj_matrices); the face
+// fluxes are matrices for every scene (CellKernel::own_flux, Piece::nb_flux).
+#include "adaptivity/cell_kernel.h"
+#include "adaptivity/short_vectors.h"
+
+#include "space/weak_form.h"
+#include "time/slab_vector.h"
+
+namespace anisodwr
+{
+using namespace dealii;
+namespace sv = short_vectors;
+
+template <int dim> void CellKernel<dim>::build_cell_matrices()
+{
+  // Every matrix is a sum over the quadrature points of products of two factors, one
+  // per slot, formed once per point from weak_form's terms: X D Y^T with X, Y holding
+  // the factors per shape function (rows) and point (columns), D = diag(JxW). The
+  // products go to FullMatrix::mTmult (BLAS for the larger sizes).
+  //   A:   galerkin(phi_l, z_j) = eps grad phi_l . grad z_j + transport(phi_l) z_j
+  //   A_t: phi_l z_j;  S': strong(phi_l) s_j;  S'_t: phi_l s_j   (s = supg_test per
+  //   unit delta_K)
+  //   rho: -strong(u_k) phi_l, -u_k phi_l;  S: strong(u_k) s_l, u_k s_l
+  const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell(),
+                     nq = quad.size();
+  FullMatrix<double> phi(nw, nq), dphi(nw, nq), s(nw, nq), ds(nw, nq), dop(nw, nq),
+      u(np, nq), lu(np, nq), grads(nw, (dim + 1) * nq), dgrads(nw, (dim + 1) * nq);
+  for (unsigned int q = 0; q < nq; ++q)
+  {
+    const auto c = coefficients(q, 0.);
+    const double jx = fv_p.JxW(q);
+    for (unsigned int l = 0; l < nw; ++l)
+    {
+      const double p = fv_w.shape_value(l, q);
+      const Tensor<1, dim> &gp = fv_w.shape_grad(l, q);
+      phi(l, q) = p;
+      dphi(l, q) = jx * p;
+      s(l, q) = weak_form::supg_test(1., c.b, gp);
+      ds(l, q) = jx * s(l, q);
+      dop(l, q) = jx * weak_form::strong(c, p, gp, trace(fv_w.shape_hessian(l, q)));
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        grads(l, d * nq + q) = gp[d];
+        dgrads(l, d * nq + q) = jx * c.eps * gp[d];
+      }
+      grads(l, dim * nq + q) = p;
+      dgrads(l, dim * nq + q) = jx * weak_form::transport(c, p, gp);
+    }
+    for (unsigned int k = 0; k < np; ++k)
+    {
+      u(k, q) = fv_p.shape_value(k, q);
+      lu(k, q) = weak_form::strong(c, u(k, q), fv_p.shape_grad(k, q),
+                                   trace(fv_p.shape_hessian(k, q)));
+    }
+  }
+  for (auto &M : adj_matrices)
+    M.reinit(nw, nw);
+  for (auto &M : primal_matrices)
+    M.reinit(nw, np);
+  dgrads.mTmult(adj_matrices[0], grads);
+  dphi.mTmult(adj_matrices[1], phi);
+  dop.mTmult(adj_matrices[2], s);
+  dphi.mTmult(adj_matrices[3], s);
+  dphi.mTmult(primal_matrices[0], lu);
+  primal_matrices[0] *= -1.;
+  dphi.mTmult(primal_matrices[1], u);
+  primal_matrices[1] *= -1.;
+  ds.mTmult(primal_matrices[2], lu);
+  ds.mTmult(primal_matrices[3], u);
+  load_rho.assign(load_terms.size(), Vector<double>(nw));
+  load_supg.assign(load_terms.size(), Vector<double>(nw));
+  Vector<double> g(nq);
+  for (unsigned int j = 0; j < load_terms.size(); ++j)
+  {
+    std::copy(load_at_q[j].begin(), load_at_q[j].end(), g.begin());
+    dphi.vmult(load_rho[j], g);
+    ds.vmult(load_supg[j], g);
+  }
+}
+
+template <int dim>
+void CellKernel<dim>::primal_functionals_by_matrices(double t0, double tau,
+                                                     const Vector<double> &Un,
+                                                     const Vector<double> *Uprev,
+                                                     SlabFunctional &rho,
+                                                     SlabFunctional &supg) const
+{
+  const unsigned int np = fe_p.n_dofs_per_cell(), nw = fe_w.n_dofs_per_cell();
+  const double delta = primal.bounded_delta(delta_h, tau);
+  Vector<double> &c = scratch[0], &ct = scratch[1];
+  c.reinit(np, true);
+  ct.reinit(np, true);
+  for (unsigned int m = 0; m < g.size(); ++m)
+  {
+    const double t = t0 + g[m] * tau, wt = tau * omega[m];
+    combine(Un, idx, ell[m], 1., c);
+    combine(Un, idx, dell[m], 1. / tau, ct);
+    sv::add_vmult(rho.val[m], wt, primal_matrices[0], c);
+    sv::add_vmult(rho.val[m], wt, primal_matrices[1], ct);
+    sv::add_vmult(supg.val[m], wt * delta, primal_matrices[2], c);
+    sv::add_vmult(supg.val[m], wt * delta, primal_matrices[3], ct);
+    if (separable_load)
+    {
+      const std::vector<double> &a = load_factors_at(t);
+      for (unsigned int j = 0; j < load_terms.size(); ++j)
+      {
+        sv::add(rho.val[m], wt * a[j], load_rho[j]);
+        sv::add(supg.val[m], -wt * delta * a[j], load_supg[j]);
+      }
+    }
+    else
+      for (unsigned int q = 0; q < quad.size(); ++q)
+      {
+        const double jf = fv_p.JxW(q) * wt * scene.rhs(fv_p.quadrature_point(q), t);
+        for (unsigned int l = 0; l < nw; ++l)
+        {
+          rho.val[m](l) += jf * fv_w.shape_value(l, q);
+          supg.val[m](l) -= jf * weak_form::supg_test(delta, coefficients_at_q[q].b,
+                                                      fv_w.shape_grad(l, q));
+        }
+      }
+    add_face_terms(m, t, wt, Un, c, rho);
+  }
+  // the temporal jump u^+ - u^- at t_{n-1} (u^- = u_0 on the first slab)
+  Vector<double> &d = scratch[0];
+  combine(Un, idx, basis.left_trace(), 1., d);
+  if (Uprev)
+    for (unsigned int l = 0; l < np; ++l)
+      d(l) -= (*Uprev)(SlabLayout{basis.n_dofs()}.last(idx[l]));
+  sv::add_vmult(rho.jump, 1., primal_matrices[1], d);
+  sv::add_vmult(supg.jump, delta, primal_matrices[3], d);
+  if (!Uprev)
+    for (unsigned int q = 0; q < quad.size(); ++q)
+    {
+      const double ju = fv_p.JxW(q) * scene.initial_value(fv_p.quadrature_point(q));
+      for (unsigned int l = 0; l < nw; ++l)
+      {
+        rho.jump(l) += ju * fv_w.shape_value(l, q);
+        supg.jump(l) -= ju * weak_form::supg_test(delta, coefficients_at_q[q].b,
+                                                  fv_w.shape_grad(l, q));
+      }
+    }
+}
+
+template void CellKernel<2>::build_cell_matrices();
+template void CellKernel<2>::primal_functionals_by_matrices(double, double,
+                                                            const Vector<double> &,
+                                                            const Vector<double> *,
+                                                            SlabFunctional &,
+                                                            SlabFunctional &) const;
+} // namespace anisodwr
