@@ -21,11 +21,6 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
   const unsigned int nq = quad.size();
   rho.reset(g.size(), nw);
   supg.reset(g.size(), nw);
-  if (constant_coefficients)
-  {
-    primal_functionals_by_matrices(t0, tau, Un, Uprev, rho, supg);
-    return;
-  }
   const double delta = primal.bounded_delta(delta_h, tau);
   Vector<double> &c = scratch[0], &ct = scratch[1];
   c.reinit(np, true);
@@ -33,9 +28,15 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
   for (unsigned int m = 0; m < g.size(); ++m)
   {
     const double t = t0 + g[m] * tau, wt = tau * omega[m];
-    const std::vector<double> &a = load_factors_at(t);
     combine(Un, idx, ell[m], 1., c);
     combine(Un, idx, dell[m], 1. / tau, ct);
+    if (constant_coefficients)
+    {
+      add_cell_terms_by_matrices(m, t, wt, delta, c, ct, rho, supg);
+      add_face_terms(m, t, wt, Un, c, rho);
+      continue;
+    }
+    const std::vector<double> &a = load_factors_at(t);
     for (unsigned int q = 0; q < nq; ++q)
     {
       double uh = 0, ut = 0, lap = 0;
@@ -59,7 +60,10 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
     }
     add_face_terms(m, t, wt, Un, c, rho);
   }
-  add_temporal_jump(t0, delta, Un, Uprev, rho, supg);
+  if (constant_coefficients)
+    add_temporal_jump_by_matrices(delta, Un, Uprev, rho, supg);
+  else
+    add_temporal_jump(t0, delta, Un, Uprev, rho, supg);
 }
 
 template <int dim>

@@ -160,11 +160,16 @@ private:
   std::vector<dealii::Vector<double>> load_rho, load_supg;
   /// the faces' terms from the cell's own side: -eps (d_n u, w), halved on interior faces
   dealii::FullMatrix<double> own_flux;
-  /// rho and S on the slab through primal_matrices (constant_coefficients)
-  void primal_functionals_by_matrices(double t0, double tau,
-                                      const dealii::Vector<double> &Un,
-                                      const dealii::Vector<double> *Uprev,
-                                      SlabFunctional &rho, SlabFunctional &supg) const;
+  /// rho and S += the cell terms at Gauss point m through primal_matrices
+  /// (constant_coefficients), for u's coefficients c and d_t u's ct
+  void add_cell_terms_by_matrices(unsigned int m, double t, double wt, double delta,
+                                  const dealii::Vector<double> &c,
+                                  const dealii::Vector<double> &ct, SlabFunctional &rho,
+                                  SlabFunctional &supg) const;
+  /// add_temporal_jump through primal_matrices (constant_coefficients)
+  void add_temporal_jump_by_matrices(double delta, const dealii::Vector<double> &Un,
+                                     const dealii::Vector<double> *Uprev,
+                                     SlabFunctional &rho, SlabFunctional &supg) const;
   /// eps, b and alpha at the cell's quadrature points, evaluated once per cell where
   /// they do not depend on t (constant_coefficients)
   std::vector<weak_form::Coefficients<dim>> coefficients_at_q;

@@ -81,50 +81,50 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
 }
 
 template <int dim>
-void CellKernel<dim>::primal_functionals_by_matrices(double t0, double tau,
-                                                     const Vector<double> &Un,
-                                                     const Vector<double> *Uprev,
-                                                     SlabFunctional &rho,
-                                                     SlabFunctional &supg) const
+void CellKernel<dim>::add_cell_terms_by_matrices(unsigned int m, double t, double wt,
+                                                 double delta, const Vector<double> &c,
+                                                 const Vector<double> &ct,
+                                                 SlabFunctional &rho,
+                                                 SlabFunctional &supg) const
 {
-  const unsigned int np = fe_p.n_dofs_per_cell(), nw = fe_w.n_dofs_per_cell();
-  const double delta = primal.bounded_delta(delta_h, tau);
-  Vector<double> &c = scratch[0], &ct = scratch[1];
-  c.reinit(np, true);
-  ct.reinit(np, true);
-  for (unsigned int m = 0; m < g.size(); ++m)
+  const unsigned int nw = fe_w.n_dofs_per_cell();
+  sv::add_vmult(rho.val[m], wt, primal_matrices[0], c);
+  sv::add_vmult(rho.val[m], wt, primal_matrices[1], ct);
+  sv::add_vmult(supg.val[m], wt * delta, primal_matrices[2], c);
+  sv::add_vmult(supg.val[m], wt * delta, primal_matrices[3], ct);
+  if (separable_load)
   {
-    const double t = t0 + g[m] * tau, wt = tau * omega[m];
-    combine(Un, idx, ell[m], 1., c);
-    combine(Un, idx, dell[m], 1. / tau, ct);
-    sv::add_vmult(rho.val[m], wt, primal_matrices[0], c);
-    sv::add_vmult(rho.val[m], wt, primal_matrices[1], ct);
-    sv::add_vmult(supg.val[m], wt * delta, primal_matrices[2], c);
-    sv::add_vmult(supg.val[m], wt * delta, primal_matrices[3], ct);
-    if (separable_load)
+    const std::vector<double> &a = load_factors_at(t);
+    for (unsigned int j = 0; j < load_terms.size(); ++j)
     {
-      const std::vector<double> &a = load_factors_at(t);
-      for (unsigned int j = 0; j < load_terms.size(); ++j)
-      {
-        sv::add(rho.val[m], wt * a[j], load_rho[j]);
-        sv::add(supg.val[m], -wt * delta * a[j], load_supg[j]);
-      }
+      sv::add(rho.val[m], wt * a[j], load_rho[j]);
+      sv::add(supg.val[m], -wt * delta * a[j], load_supg[j]);
     }
-    else
-      for (unsigned int q = 0; q < quad.size(); ++q)
-      {
-        const double jf = fv_p.JxW(q) * wt * scene.rhs(fv_p.quadrature_point(q), t);
-        for (unsigned int l = 0; l < nw; ++l)
-        {
-          rho.val[m](l) += jf * fv_w.shape_value(l, q);
-          supg.val[m](l) -= jf * weak_form::supg_test(delta, coefficients_at_q[q].b,
-                                                      fv_w.shape_grad(l, q));
-        }
-      }
-    add_face_terms(m, t, wt, Un, c, rho);
+    return;
   }
+  for (unsigned int q = 0; q < quad.size(); ++q)
+  {
+    const double jf = fv_p.JxW(q) * wt * scene.rhs(fv_p.quadrature_point(q), t);
+    for (unsigned int l = 0; l < nw; ++l)
+    {
+      rho.val[m](l) += jf * fv_w.shape_value(l, q);
+      supg.val[m](l) -=
+          jf * weak_form::supg_test(delta, coefficients_at_q[q].b, fv_w.shape_grad(l, q));
+    }
+  }
+}
+
+template <int dim>
+void CellKernel<dim>::add_temporal_jump_by_matrices(double delta,
+                                                    const Vector<double> &Un,
+                                                    const Vector<double> *Uprev,
+                                                    SlabFunctional &rho,
+                                                    SlabFunctional &supg) const
+{
   // the temporal jump u^+ - u^- at t_{n-1} (u^- = u_0 on the first slab)
+  const unsigned int np = fe_p.n_dofs_per_cell(), nw = fe_w.n_dofs_per_cell();
   Vector<double> &d = scratch[0];
+  d.reinit(np, true);
   combine(Un, idx, basis.left_trace(), 1., d);
   if (Uprev)
     for (unsigned int l = 0; l < np; ++l)
@@ -145,9 +145,13 @@ void CellKernel<dim>::primal_functionals_by_matrices(double t0, double tau,
 }
 
 template void CellKernel<2>::build_cell_matrices();
-template void CellKernel<2>::primal_functionals_by_matrices(double, double,
-                                                            const Vector<double> &,
-                                                            const Vector<double> *,
-                                                            SlabFunctional &,
-                                                            SlabFunctional &) const;
+template void CellKernel<2>::add_cell_terms_by_matrices(unsigned int, double, double,
+                                                        double, const Vector<double> &,
+                                                        const Vector<double> &,
+                                                        SlabFunctional &,
+                                                        SlabFunctional &) const;
+template void CellKernel<2>::add_temporal_jump_by_matrices(double, const Vector<double> &,
+                                                           const Vector<double> *,
+                                                           SlabFunctional &,
+                                                           SlabFunctional &) const;
 } // namespace anisodwr
