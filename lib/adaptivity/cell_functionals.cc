@@ -25,17 +25,19 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
   Vector<double> &c = scratch[0], &ct = scratch[1];
   c.reinit(np, true);
   ct.reinit(np, true);
+  // the matrices act on u's nodal coefficients, once per temporal node (not per point)
+  nodal_products(Un);
   for (unsigned int m = 0; m < g.size(); ++m)
   {
     const double t = t0 + g[m] * tau, wt = tau * omega[m];
-    combine(Un, idx, ell[m], 1., c);
-    combine(Un, idx, dell[m], 1. / tau, ct);
+    add_face_terms(m, t, wt, rho);
     if (constant_coefficients)
     {
-      add_cell_terms_by_matrices(m, t, wt, delta, c, ct, rho, supg);
-      add_face_terms(m, t, wt, Un, c, rho);
+      add_cell_terms_by_matrices(m, t, wt, delta, tau, rho, supg);
       continue;
     }
+    combine(Un, idx, ell[m], 1., c);
+    combine(Un, idx, dell[m], 1. / tau, ct);
     const std::vector<double> &a = load_factors_at(t);
     for (unsigned int q = 0; q < nq; ++q)
     {
@@ -58,7 +60,6 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
             jx * R * weak_form::supg_test(delta, cf.b, fv_w.shape_grad(l, q));
       }
     }
-    add_face_terms(m, t, wt, Un, c, rho);
   }
   if (constant_coefficients)
     add_temporal_jump_by_matrices(delta, Un, Uprev, rho, supg);
@@ -66,22 +67,40 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
     add_temporal_jump(t0, delta, Un, Uprev, rho, supg);
 }
 
+template <int dim> void CellKernel<dim>::nodal_products(const Vector<double> &Un) const
+{
+  const unsigned int np = fe_p.n_dofs_per_cell(), m1 = basis.n_dofs();
+  const SlabLayout slab{m1};
+  Vector<double> &c = scratch[2];
+  c.reinit(np, true);
+  node_terms.resize(m1);
+  for (unsigned int k = 0; k < m1; ++k)
+  {
+    auto &terms = node_terms[k];
+    for (unsigned int l = 0; l < np; ++l)
+      c(l) = Un(slab.index(idx[l], k));
+    sv::vmult(terms[0], own_flux, c);
+    for (unsigned int i = 0; i < 4 && constant_coefficients; ++i)
+      sv::vmult(terms[i + 1], primal_matrices[i], c);
+    for (const auto &pc : pieces)
+      if (pc.kind == 0)
+      {
+        for (unsigned int l = 0; l < np; ++l)
+          c(l) = Un(slab.index(pc.nb_dofs[l], k));
+        sv::add_vmult(terms[0], 1., pc.nb_flux, c);
+      }
+  }
+}
+
 template <int dim>
 void CellKernel<dim>::add_face_terms(unsigned int m, double t, double wt,
-                                     const Vector<double> &Un, const Vector<double> &c,
                                      SlabFunctional &rho) const
 {
-  const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell();
-  Vector<double> &cn = scratch[2];
-  sv::add_vmult(rho.val[m], wt, own_flux, c);
+  const unsigned int nw = fe_w.n_dofs_per_cell();
+  for (unsigned int k = 0; k < node_terms.size(); ++k)
+    sv::add(rho.val[m], wt * ell[m][k], node_terms[k][0]);
   for (const auto &pc : pieces)
-    if (pc.kind == 0)
-    {
-      cn.reinit(np, true);
-      combine(Un, pc.nb_dofs, ell[m], 1., cn);
-      sv::add_vmult(rho.val[m], wt, pc.nb_flux, cn);
-    }
-    else if (pc.kind == 1) // the Neumann data
+    if (pc.kind == 1) // the Neumann data
       for (unsigned int q = 0; q < pc.JxW.size(); ++q)
       {
         const double data = scene.boundary_flux(pc.x[q], pc.normal[q], t, pc.id);

@@ -113,12 +113,15 @@ private:
                const std::vector<double> &a, double scale,
                dealii::Vector<double> &c) const;
 
-  /// rho += the face terms at Gauss point m (time t, weight wt) for u's coefficients c:
-  /// half the flux jump (interior), the Neumann mismatch, -eps d_n u (Dirichlet);
-  /// the cell's own side through own_flux, the neighbours' through Piece::nb_flux.
-  void add_face_terms(unsigned int m, double t, double wt,
-                      const dealii::Vector<double> &Un, const dealii::Vector<double> &c,
-                      SlabFunctional &rho) const;
+  /// node_terms[k] for u = temporal node k of Un: [0] the face fluxes (the cell's own
+  /// side through own_flux, the neighbours' through Piece::nb_flux), [1..4]
+  /// (constant_coefficients) primal_matrices[0..3] applied to u's coefficients.
+  void nodal_products(const dealii::Vector<double> &Un) const;
+  mutable std::vector<std::array<dealii::Vector<double>, 5>> node_terms;
+
+  /// rho += the face terms at Gauss point m (time t, weight wt) from node_terms: half
+  /// the flux jump (interior), the Neumann mismatch, -eps d_n u (Dirichlet).
+  void add_face_terms(unsigned int m, double t, double wt, SlabFunctional &rho) const;
 
   /// rho and S += the temporal jump terms of u^+ - u^- at t0.
   void add_temporal_jump(double t0, double delta, const dealii::Vector<double> &Un,
@@ -160,11 +163,10 @@ private:
   std::vector<dealii::Vector<double>> load_rho, load_supg;
   /// the faces' terms from the cell's own side: -eps (d_n u, w), halved on interior faces
   dealii::FullMatrix<double> own_flux;
-  /// rho and S += the cell terms at Gauss point m through primal_matrices
-  /// (constant_coefficients), for u's coefficients c and d_t u's ct
+  /// rho and S += the cell terms at Gauss point m through node_terms
+  /// (constant_coefficients) and the loads
   void add_cell_terms_by_matrices(unsigned int m, double t, double wt, double delta,
-                                  const dealii::Vector<double> &c,
-                                  const dealii::Vector<double> &ct, SlabFunctional &rho,
+                                  double tau, SlabFunctional &rho,
                                   SlabFunctional &supg) const;
   /// add_temporal_jump through primal_matrices (constant_coefficients)
   void add_temporal_jump_by_matrices(double delta, const dealii::Vector<double> &Un,

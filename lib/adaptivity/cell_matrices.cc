@@ -82,16 +82,20 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
 
 template <int dim>
 void CellKernel<dim>::add_cell_terms_by_matrices(unsigned int m, double t, double wt,
-                                                 double delta, const Vector<double> &c,
-                                                 const Vector<double> &ct,
+                                                 double delta, double tau,
                                                  SlabFunctional &rho,
                                                  SlabFunctional &supg) const
 {
   const unsigned int nw = fe_w.n_dofs_per_cell();
-  sv::add_vmult(rho.val[m], wt, primal_matrices[0], c);
-  sv::add_vmult(rho.val[m], wt, primal_matrices[1], ct);
-  sv::add_vmult(supg.val[m], wt * delta, primal_matrices[2], c);
-  sv::add_vmult(supg.val[m], wt * delta, primal_matrices[3], ct);
+  for (unsigned int k = 0; k < node_terms.size(); ++k)
+  {
+    const auto &terms = node_terms[k];
+    const double v = wt * ell[m][k], d = wt * dell[m][k] / tau;
+    sv::add(rho.val[m], v, terms[1]);
+    sv::add(rho.val[m], d, terms[2]);
+    sv::add(supg.val[m], delta * v, terms[3]);
+    sv::add(supg.val[m], delta * d, terms[4]);
+  }
   if (separable_load)
   {
     const std::vector<double> &a = load_factors_at(t);
@@ -146,9 +150,7 @@ void CellKernel<dim>::add_temporal_jump_by_matrices(double delta,
 
 template void CellKernel<2>::build_cell_matrices();
 template void CellKernel<2>::add_cell_terms_by_matrices(unsigned int, double, double,
-                                                        double, const Vector<double> &,
-                                                        const Vector<double> &,
-                                                        SlabFunctional &,
+                                                        double, double, SlabFunctional &,
                                                         SlabFunctional &) const;
 template void CellKernel<2>::add_temporal_jump_by_matrices(double, const Vector<double> &,
                                                            const Vector<double> *,
