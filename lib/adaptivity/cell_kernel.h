@@ -4,8 +4,8 @@
 // estimator.h).
 //   cell_kernel.cc               the cell, its faces and neighbours (hanging nodes)
 //   cell_functionals.cc          rho(u), S(u), A(.)(z), S'(., z) and J' on the cell
-//   cell_matrices.cc             rho, S, A and S' as cell matrices (coefficients constant
-//   in t) slab_functions.cc            slab functions in W-local coefficients
+//   cell_matrices.cc             rho, S, A, S' as matrices (coefficients constant in t)
+//   slab_functions.cc            slab functions in W-local coefficients
 #include "space/space.h"
 #include "space/weak_form.h"
 #include "time/temporal_basis.h"
