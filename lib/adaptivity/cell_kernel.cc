@@ -148,9 +148,8 @@ void CellKernel<dim>::add_piece(const FEFaceValuesBase<dim> &fp,
   pc.kind = kind;
   pc.nb_dofs = std::move(nb);
   pc.w.reinit(nw, nq);
-  pc.gradn.reinit(np, nq);
-  if (fn)
-    pc.nb_gradn.reinit(np, nq);
+  // the normal derivatives of u (ours and the neighbour's) at the piece's points
+  FullMatrix<double> gradn(np, nq), nb_gradn(fn ? np : 0, nq);
   for (unsigned int q = 0; q < nq; ++q)
   {
     pc.JxW.push_back(fp.JxW(q));
@@ -159,7 +158,7 @@ void CellKernel<dim>::add_piece(const FEFaceValuesBase<dim> &fp,
     for (unsigned int l = 0; l < nw; ++l)
       pc.w(l, q) = fw.shape_value(l, q);
     for (unsigned int l = 0; l < np; ++l)
-      pc.gradn(l, q) = fp.shape_grad(l, q) * fp.normal_vector(q);
+      gradn(l, q) = fp.shape_grad(l, q) * fp.normal_vector(q);
     if (fn) // match the neighbour's quadrature point to ours
     {
       unsigned int qn = 0;
@@ -172,7 +171,7 @@ void CellKernel<dim>::add_piece(const FEFaceValuesBase<dim> &fp,
           qn = k;
         }
       for (unsigned int l = 0; l < np; ++l)
-        pc.nb_gradn(l, q) = fn->shape_grad(l, qn) * fp.normal_vector(q);
+        nb_gradn(l, q) = fn->shape_grad(l, qn) * fp.normal_vector(q);
     }
   }
   // the flux terms as matrices: -eps/2 (d_n u - d_n u_nb, w) on interior faces,
@@ -186,9 +185,9 @@ void CellKernel<dim>::add_piece(const FEFaceValuesBase<dim> &fp,
       const double w = pc.JxW[q] * pc.w(l, q);
       for (unsigned int k = 0; k < np; ++k)
       {
-        own_flux(l, k) += own * w * pc.gradn(k, q);
+        own_flux(l, k) += own * w * gradn(k, q);
         if (fn)
-          pc.nb_flux(l, k) += 0.5 * eps * w * pc.nb_gradn(k, q);
+          pc.nb_flux(l, k) += 0.5 * eps * w * nb_gradn(k, q);
       }
     }
   pieces.push_back(std::move(pc));

@@ -90,7 +90,7 @@ private:
     int kind;                          // 0 interior, 1 Neumann, 2 Dirichlet
     dealii::types::boundary_id id = 0; ///< the boundary id (kinds 1 and 2)
     std::vector<double> JxW;
-    dealii::FullMatrix<double> w, gradn, nb_gradn;
+    dealii::FullMatrix<double> w; ///< W's shape values at the points (Neumann data)
     std::vector<dealii::Point<dim>> x;
     std::vector<dealii::Tensor<1, dim>> normal;
     std::vector<dealii::types::global_dof_index> nb_dofs;
