@@ -469,9 +469,10 @@ std::vector<Entry> adaptivity_entries()
        "indicators are then the weighted sum of the goals' own; costs one adjoint solve "
        "and estimate per goal instead of one in all."},
       {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
-       "March the adjoint(s) in a second thread while the primal marches, when the "
-       "adjoint does not depend on the primal (goal.weights is not auto, or one adjoint "
-       "per goal: per_goal_estimates), one MPI rank "
+       "March the adjoint(s) in a second thread while the primal marches (with "
+       "goal.weights = auto and one adjoint for the weighted goal: assemble and "
+       "factorize the adjoint's slab operator there, and march once the primal has "
+       "given the weights), when one MPI rank "
        "and more than one thread run, both slab systems are predicted to go to UMFPACK, "
        "and the loop's memory estimate with both factorizations held at once fits the "
        "memory limit; otherwise (and with false) the primal, then the adjoint. The "

@@ -37,28 +37,6 @@ namespace
 {
 constexpr double dwr_nan = std::numeric_limits<double>::quiet_NaN();
 
-/// The loop table's copy of the estimator's sums.
-void copy_indicators(const Indicators<2> &ind, LoopRow &row)
-{
-  row.eta_h = ind.eta_h;
-  row.eta_h_total = ind.eta_h_total();
-  row.eta_tau = ind.eta_tau;
-  row.eta_tau_rho = ind.eta_tau_rho;
-  row.eta_tau_rhostar = ind.eta_tau_rhostar;
-  row.eta_h_rho = ind.eta_h_rho;
-  row.eta_h_rhostar = ind.eta_h_rhostar;
-  row.eta_h_supg = ind.eta_h_supg;
-  row.eta_h_split_rest = ind.eta_h_split_rest;
-  row.no_lift = ind.no_lift;
-}
-
-/// One goal's own estimate and its signed parts into row (eta_<goal>, eta_hx_<goal>, ...).
-void add_goal_estimate(LoopRow &row, const Indicators<2> &goal_ind)
-{
-  row.eta_goal.push_back(goal_ind.eta_h_total() + goal_ind.eta_tau);
-  row.eta_goal_parts.push_back({{goal_ind.eta_h[0], goal_ind.eta_h[1], goal_ind.eta_tau}});
-}
-
 /// The adjoint march of a loop: its slab operator, the adjoint slab solutions (one set
 /// per goal with goal.weights = estimate or per_goal_estimates, else one for the
 /// weighted goal) and its wall time.
@@ -91,10 +69,13 @@ private:
   /// (adaptivity.concurrent_marches: see its documentation for the conditions).
   bool check_loop_memory(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint);
   /// The adjoint(s) of the loop: independent of the primal unless goal.weights = auto
-  /// (then call it after evaluate_goals).
+  /// with one adjoint for the weighted goal. Then `weights` is valid: the last slab's
+  /// operator is assembled and factorized first, and the march waits for weights (true
+  /// once evaluate_goals has set the goals' weights, false if the primal failed).
   AdjointMarch march_adjoints(unsigned int loop, const Space<2> &adjoint,
                               const std::vector<GoalSpec> &goal_specs,
-                              const MarchOptions &opt, bool concurrent) const;
+                              const MarchOptions &opt, bool concurrent,
+                              std::shared_future<bool> weights = {}) const;
   /// J_i(u_tau h), the weights (auto: from the patch lift) and the weighted J (not yet
   /// for goal.weights = estimate).
   void evaluate_goals(LoopRow &row, const Space<2> &primal,
@@ -160,34 +141,6 @@ private:
   double mem_ratio = 1.;
   Timer wall;
 };
-
-/// The uncertainties of goal.reference, one per goal (empty without references).
-std::vector<double> reference_uncertainties(const std::vector<GoalSpec> &goals)
-{
-  std::vector<double> u;
-  for (const auto &g : goals)
-    if (!std::isnan(g.reference))
-      u.push_back(g.reference_uncertainty);
-  return u;
-}
-
-std::vector<std::string> goal_names(const std::vector<GoalSpec> &goals)
-{
-  std::vector<std::string> names;
-  for (const auto &g : goals)
-    names.push_back(g.name);
-  return names;
-}
-
-std::vector<std::string> probe_columns(const std::vector<GoalSpec> &goals)
-{
-  std::vector<std::string> columns{"loop", "N_space", "N_tot"};
-  for (const auto &g : goals)
-    columns.push_back("J_" + g.name);
-  for (const auto &field : ProbeResult().named())
-    columns.push_back(field.first);
-  return columns;
-}
 
 /// The scene of the run, with the output directory created first.
 std::unique_ptr<Scene<2>> scene_in_directory(const Parameters &prm)
@@ -311,14 +264,30 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   {
     // The adjoint does not depend on the primal unless goal.weights = auto: with
     // concurrent marches it runs in a second thread while the primal marches (the
-    // future's destructor waits for it if the primal fails). OpenBLAS then runs on one
-    // thread: its own threads would compete with the other march.
+    // future's destructor waits for it if the primal fails). With auto weights only its
+    // operator is built and factorized then; the march waits for the weights (`gate`,
+    // released with false before that destructor if the primal fails). OpenBLAS runs on
+    // one thread: its own threads would compete with the other march.
     const ScopedBlasThreads blas(concurrent ? 1 : 0);
     std::future<AdjointMarch> adjoint_thread;
+    struct Gate
+    {
+      std::promise<bool> promise;
+      bool open = false;
+      void release(bool ok)
+      {
+        if (!open)
+          promise.set_value(ok);
+        open = true;
+      }
+      ~Gate() { release(false); }
+    } gate;
+    const std::shared_future<bool> weights =
+        auto_weights && !by_goal ? gate.promise.get_future().share() : std::shared_future<bool>();
     if (concurrent)
-      adjoint_thread = std::async(std::launch::async, [this, &adjoint, &opt,
-                                                       specs = goals, loop = row.loop]()
-                                  { return march_adjoints(loop, adjoint, specs, opt, true); });
+      adjoint_thread = std::async(
+          std::launch::async, [this, &adjoint, &opt, specs = goals, loop = row.loop, weights]()
+          { return march_adjoints(loop, adjoint, specs, opt, true, weights); });
     Timer t;
     {
       // (one after the other: the primal's factors are freed before the adjoint factorizes)
@@ -333,13 +302,14 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
       U_hi = march_primal(primal, mesh, basis_hi, op, opt);
     }
     row.t_primal = t.wall_time();
+    evaluate_goals(row, primal, U);
+    gate.release(true);
     if (concurrent)
       adj = adjoint_thread.get();
   }
   const HigherOrderPrimal hi{basis_hi, U_hi};
   const HigherOrderPrimal *hi_ptr = U_hi.empty() ? nullptr : &hi;
 
-  evaluate_goals(row, primal, U);
   if (!concurrent)
     adj = march_adjoints(row.loop, adjoint, goals, opt, false);
   estimate_from(row, ind, primal, adjoint, U, hi_ptr, std::move(adj));
@@ -387,7 +357,8 @@ SlabSolverOptions AdaptiveLoop::march_solver_options(unsigned int loop,
 
 AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adjoint,
                                           const std::vector<GoalSpec> &goal_specs,
-                                          const MarchOptions &opt, bool concurrent) const
+                                          const MarchOptions &opt, bool concurrent,
+                                          std::shared_future<bool> weights) const
 {
   // One adjoint per goal: all adjoints first (one factorization serves them), then the
   // estimates without the adjoint's factors in memory
@@ -395,13 +366,27 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   AdjointMarch a;
   a.op = std::make_unique<SlabOperator<2>>(adjoint, basis,
                                            march_solver_options(loop, "adjoint", concurrent));
+  double waited = 0;
+  if (weights.valid())
+  {
+    const unsigned int last = mesh.n_slabs() - 1;
+    guarded_slab_solve(
+        opt, "adjoint", last, mesh, [&]() { a.op->prepare(mesh.start(last), mesh.tau(last)); },
+        Vector<double>());
+    Timer w;
+    if (!weights.get())
+      return a;
+    waited = w.wall_time();
+  }
+  // (with weights: the goals' weights as evaluate_goals set them)
+  const std::vector<GoalSpec> &specs = weights.valid() ? goals : goal_specs;
   if (by_goal)
-    for (const auto &goal : goal_specs)
+    for (const auto &goal : specs)
       a.Z.push_back(goal_adjoint(adjoint, *a.op, goal, opt));
   else
-    a.Z.push_back(march_adjoint(adjoint, mesh, basis, *a.op,
-                                assemble_goal_vectors(adjoint, goal_specs), opt));
-  a.wall = t.wall_time();
+    a.Z.push_back(
+        march_adjoint(adjoint, mesh, basis, *a.op, assemble_goal_vectors(adjoint, specs), opt));
+  a.wall = t.wall_time() - waited;
   return a;
 }
 
@@ -488,7 +473,7 @@ bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
   const SlabSolverOptions options = slab_solver_options(prm);
   const bool higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
   model.concurrent =
-      prm.adaptivity.concurrent_marches && !(auto_weights && !by_goal) &&
+      prm.adaptivity.concurrent_marches &&
       mpi_ranks() == 1 &&
       MultithreadInfo::n_threads() > 1 && options.direct_solver == DirectEngine::umfpack &&
       !model.primal.iterative && !model.adjoint.iterative &&

@@ -62,4 +62,54 @@ void print_run_line(std::ostream &out, const Parameters &prm, const Scene<2> &sc
                 : " +- " + json_number(goals[g].reference_uncertainty, 12) + " (reference)");
   out << "\n";
 }
+
+/// The loop table's copy of the estimator's sums.
+void copy_indicators(const Indicators<2> &ind, LoopRow &row)
+{
+  row.eta_h = ind.eta_h;
+  row.eta_h_total = ind.eta_h_total();
+  row.eta_tau = ind.eta_tau;
+  row.eta_tau_rho = ind.eta_tau_rho;
+  row.eta_tau_rhostar = ind.eta_tau_rhostar;
+  row.eta_h_rho = ind.eta_h_rho;
+  row.eta_h_rhostar = ind.eta_h_rhostar;
+  row.eta_h_supg = ind.eta_h_supg;
+  row.eta_h_split_rest = ind.eta_h_split_rest;
+  row.no_lift = ind.no_lift;
+}
+
+/// One goal's own estimate and its signed parts into row (eta_<goal>, eta_hx_<goal>, ...).
+void add_goal_estimate(LoopRow &row, const Indicators<2> &goal_ind)
+{
+  row.eta_goal.push_back(goal_ind.eta_h_total() + goal_ind.eta_tau);
+  row.eta_goal_parts.push_back({{goal_ind.eta_h[0], goal_ind.eta_h[1], goal_ind.eta_tau}});
+}
+
+/// The uncertainties of goal.reference, one per goal (empty without references).
+std::vector<double> reference_uncertainties(const std::vector<GoalSpec> &goals)
+{
+  std::vector<double> u;
+  for (const auto &g : goals)
+    if (!std::isnan(g.reference))
+      u.push_back(g.reference_uncertainty);
+  return u;
+}
+
+std::vector<std::string> goal_names(const std::vector<GoalSpec> &goals)
+{
+  std::vector<std::string> names;
+  for (const auto &g : goals)
+    names.push_back(g.name);
+  return names;
+}
+
+std::vector<std::string> probe_columns(const std::vector<GoalSpec> &goals)
+{
+  std::vector<std::string> columns{"loop", "N_space", "N_tot"};
+  for (const auto &g : goals)
+    columns.push_back("J_" + g.name);
+  for (const auto &field : ProbeResult().named())
+    columns.push_back(field.first);
+  return columns;
+}
 } // namespace anisodwr

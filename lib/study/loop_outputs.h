@@ -26,6 +26,19 @@ void write_loop_outputs(const Parameters &prm, const Scene<2> &scene,
                         const std::vector<double> &ar_cell,
                         std::vector<std::pair<double, std::string>> &vtu_records);
 
+/// The uncertainties of goal.reference, one per goal (empty without references).
+std::vector<double> reference_uncertainties(const std::vector<GoalSpec> &goals);
+/// The goals' names.
+std::vector<std::string> goal_names(const std::vector<GoalSpec> &goals);
+/// The columns of probes.csv: loop, sizes, J per goal and the probes.
+std::vector<std::string> probe_columns(const std::vector<GoalSpec> &goals);
+
+/// The loop table's copy of the estimator's sums.
+void copy_indicators(const Indicators<2> &ind, LoopRow &row);
+
+/// One goal's own estimate and its signed parts into row (eta_<goal>, eta_hx_<goal>, ...).
+void add_goal_estimate(LoopRow &row, const Indicators<2> &goal_ind);
+
 /// The first line of a DWR run on `out`: scene, degrees (adjoint degree q), adaptivity
 /// mode and the goals, each with its exact value (has_exact; J_exact per goal) and its
 /// reference uncertainty if goal.reference gave one.

@@ -51,7 +51,9 @@ void add_operator(const SlabSystemSize &s, const MemoryModel &m, Phase &p)
                 predicted_modes_mb(s.n_space, s.degree, m.r + 1) * MB;
     return;
   }
-  if (!s.iterative && m.lean_direct)
+  // (lean: only M and A stay once UMFPACK has its copy; with concurrent marches the
+  // other march runs through that release, so the assembly's matrices count)
+  if (!s.iterative && m.lean_direct && !m.concurrent)
     p.matrices += 2 * 8 * s.nnz_space;
   else
     p.matrices += sets * 4 * 8 * s.nnz_space + 12 * nnz_k + 8 * n_k;
