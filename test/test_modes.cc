@@ -217,6 +217,25 @@ TEST_P(ModesVsCoupled, AgreesWithCoupledUmfpack)
     EXPECT_LE(relative_difference(U_modes, U_direct), 1e-10)
         << "r = " << r << ", Q" << p << (adjoint ? ", transposed" : ", primal")
         << ", tau = " << tau;
+    if (adjoint)
+      // several goals' loads side by side (solve_transposed, parallel threads): each
+      // result is exactly that load's own transposed solve
+      for (SlabOperator<2> *op : {&direct, &modes})
+      {
+        const Vector<double> load2 = random_vector(load.size(), 21 + r),
+                             load3 = random_vector(load.size(), 31 + p);
+        std::vector<Vector<double>> U(3);
+        op->solve_transposed({&load, &load2, &load3}, {&U[0], &U[1], &U[2]});
+        const Vector<double> *loads[] = {&load, &load2, &load3};
+        for (unsigned int i = 0; i < 3; ++i)
+        {
+          Vector<double> own;
+          op->solve(*loads[i], own, true);
+          EXPECT_EQ(relative_difference(U[i], own), 0.)
+              << "r = " << r << ", Q" << p << (op == &modes ? ", modes" : ", coupled")
+              << ", load " << i;
+        }
+      }
     t0 += tau;
   }
   // one factorization per mode for each of the two slab lengths

@@ -10,32 +10,58 @@ namespace anisodwr
 using namespace dealii;
 
 template <int dim>
-std::vector<Vector<double>>
-march_adjoint(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,
-              SlabOperator<dim> &op, const GoalVectors &goal, const MarchOptions &options)
+std::vector<std::vector<Vector<double>>>
+march_adjoints(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,
+               SlabOperator<dim> &op, const std::vector<GoalVectors> &goals,
+               const MarchOptions &options)
 {
   const unsigned int N = mesh.n_slabs();
-  std::vector<Vector<double>> Z(N);
-  Vector<double> coupling(space.n_dofs()), first, rhs;
+  const std::size_t G = goals.size();
+  std::vector<std::vector<Vector<double>>> Z(G, std::vector<Vector<double>>(N));
+  std::vector<Vector<double>> coupling(G, Vector<double>(space.n_dofs())), rhs(G);
+  std::vector<const Vector<double> *> loads(G);
+  std::vector<Vector<double> *> results(G);
+  Vector<double> first;
   for (unsigned int n = N; n-- > 0;)
   {
+    for (std::size_t g = 0; g < G; ++g)
+    {
+      loads[g] = &rhs[g];
+      results[g] = &Z[g][n];
+    }
     guarded_slab_solve(
         options, "adjoint", n, mesh,
         [&]()
         {
           op.prepare(mesh.start(n), mesh.tau(n));
-          slab_goal_rhs(goal, mesh, basis, n, rhs);
-          if (n + 1 < N)
-            add_kron_vector(1., basis.right_trace(), coupling, rhs);
-          op.solve(rhs, Z[n], true);
+          for (std::size_t g = 0; g < G; ++g)
+          {
+            slab_goal_rhs(goals[g], mesh, basis, n, rhs[g]);
+            if (n + 1 < N)
+              add_kron_vector(1., basis.right_trace(), coupling[g], rhs[g]);
+          }
+          op.solve_transposed(loads, results);
           // M(t_{n-1})^T z(t_{n-1}^+): the coupling into slab n-1, computed while the
           // operator still holds slab n's jump mass.
-          combine_blocks(Z[n], basis.left_trace(), first);
-          op.jump_mass().Tvmult(coupling, first);
+          for (std::size_t g = 0; g < G; ++g)
+          {
+            combine_blocks(Z[g][n], basis.left_trace(), first);
+            op.jump_mass().Tvmult(coupling[g], first);
+          }
         },
-        Z[n]);
+        Z[0][n]);
+    for (std::size_t g = 1; g < G; ++g) // (their non-finite check)
+      guarded_slab_solve(options, "adjoint", n, mesh, []() {}, Z[g][n]);
   }
   return Z;
+}
+
+template <int dim>
+std::vector<Vector<double>>
+march_adjoint(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,
+              SlabOperator<dim> &op, const GoalVectors &goal, const MarchOptions &options)
+{
+  return std::move(march_adjoints(space, mesh, basis, op, {goal}, options).front());
 }
 
 template <int dim>
@@ -61,6 +87,9 @@ Vector<double> end_time_representer(const Space<dim> &adjoint,
 
 template Vector<double> end_time_representer<2>(const Space<2> &,
                                                 const std::vector<GoalSpec> &);
+template std::vector<std::vector<Vector<double>>>
+march_adjoints<2>(const Space<2> &, const TimeMesh &, const TemporalBasis &, SlabOperator<2> &,
+                  const std::vector<GoalVectors> &, const MarchOptions &);
 template std::vector<Vector<double>>
 march_adjoint<2>(const Space<2> &, const TimeMesh &, const TemporalBasis &,
                  SlabOperator<2> &, const GoalVectors &, const MarchOptions &);

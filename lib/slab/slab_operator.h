@@ -74,6 +74,10 @@ public:
   /// (which then serves the remaining slabs with the same K_n).
   void solve(const dealii::Vector<double> &load, dealii::Vector<double> &U,
              bool transpose = false);
+  /// K_n^T U[i] = loads[i] for every i, as solve(loads[i], U[i], true); with a direct
+  /// solver (whose back-substitutions only read the factors) each in its own thread.
+  void solve_transposed(const std::vector<const dealii::Vector<double> *> &loads,
+                        const std::vector<dealii::Vector<double> *> &U);
 
   const SlabTimings &timings() const { return time; }
   dealii::types::global_dof_index n_slab_dofs() const
@@ -113,6 +117,8 @@ private:
   std::unique_ptr<IterativeSlabSolver> krylov[2]; // [transpose]
   dealii::Vector<double> guess[2];
   bool lu_valid = false, k_assembled = false;
+  /// The direct transposed solve of solve() (reads the factors and the constraints only).
+  void direct_transposed(const dealii::Vector<double> &load, dealii::Vector<double> &U) const;
   void assemble_matrix();
   /// The Kronecker terms of K_n (full and condensed), the jump mass and the split for
   /// the Kronecker preconditioners; assembles the spatial matrices they need.

@@ -89,10 +89,6 @@ private:
   void estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
                      const Space<2> &adjoint, const std::vector<Vector<double>> &U,
                      const HigherOrderPrimal *hi, AdjointMarch adj);
-  /// The adjoint of one goal alone (weight 1), marched with opq.
-  std::vector<Vector<double>> goal_adjoint(const Space<2> &adjoint, SlabOperator<2> &opq,
-                                           const GoalSpec &goal,
-                                           const MarchOptions &opt) const;
   /// The indicators of one goal alone (weight 1) from its adjoint Z.
   Indicators<2> goal_estimate(const Space<2> &primal, const Space<2> &adjoint,
                               const std::vector<Vector<double>> &U,
@@ -381,8 +377,13 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   // (with weights: the goals' weights as evaluate_goals set them)
   const std::vector<GoalSpec> &specs = weights.valid() ? goals : goal_specs;
   if (by_goal)
+  {
+    // each goal alone (weight 1), their solves side by side
+    std::vector<GoalVectors> unit;
     for (const auto &goal : specs)
-      a.Z.push_back(goal_adjoint(adjoint, *a.op, goal, opt));
+      unit.push_back(assemble_goal_vectors(adjoint, {unweighted(goal)}));
+    a.Z = anisodwr::march_adjoints(adjoint, mesh, basis, *a.op, unit, opt);
+  }
   else
     a.Z.push_back(
         march_adjoint(adjoint, mesh, basis, *a.op, assemble_goal_vectors(adjoint, specs), opt));
@@ -432,15 +433,6 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   if (estimate_weights)
     weigh_goals(row);
   row.t_estimate = t.wall_time();
-}
-
-std::vector<Vector<double>> AdaptiveLoop::goal_adjoint(const Space<2> &adjoint,
-                                                       SlabOperator<2> &opq,
-                                                       const GoalSpec &goal,
-                                                       const MarchOptions &opt) const
-{
-  return march_adjoint(adjoint, mesh, basis, opq,
-                       assemble_goal_vectors(adjoint, {unweighted(goal)}), opt);
 }
 
 Indicators<2> AdaptiveLoop::goal_estimate(const Space<2> &primal, const Space<2> &adjoint,
