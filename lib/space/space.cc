@@ -27,7 +27,7 @@ Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria,
 template <int dim> void Space<dim>::setup()
 {
   dofs.distribute_dofs(fe);
-  if (downstream)
+  if (downstream && downstream(dofs.n_dofs()))
   {
     const auto box = scene.bounding_box();
     const Tensor<1, dim> b = scene.convection(0.5 * (box[0] + box[1]), 0.);

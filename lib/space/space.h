@@ -45,7 +45,15 @@ public:
   /// setup() numbers the DoFs downstream along b (the scene's convection at the centre
   /// of its bounding box at t = 0): ILU and Gauss-Seidel then sweep with the flow, which
   /// makes them nearly exact for convection-dominated slab matrices. No effect if b = 0.
-  void set_downstream_numbering(bool on) { downstream = on; }
+  void set_downstream_numbering(bool on)
+  {
+    downstream = [on](dealii::types::global_dof_index) { return on; };
+  }
+  /// The same, decided by `rule` from the number of DoFs once they are distributed.
+  void set_downstream_numbering(std::function<bool(dealii::types::global_dof_index)> rule)
+  {
+    downstream = std::move(rule);
+  }
 
   unsigned int degree() const { return fe.degree; }
   dealii::types::global_dof_index n_dofs() const { return dofs.n_dofs(); }
@@ -93,7 +101,7 @@ public:
 
 private:
   const Stabilization stab;
-  bool downstream = false;
+  std::function<bool(dealii::types::global_dof_index)> downstream;
   dealii::FE_Q<dim> fe;
   dealii::MappingQ<dim> map;
   dealii::DoFHandler<dim> dofs;
