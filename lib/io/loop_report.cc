@@ -210,7 +210,7 @@ void print_loop_header(std::ostream &out)
   out << std::setw(4) << "loop" << std::setw(9) << "N_space" << std::setw(6) << "N_t"
       << std::setw(10) << "N_tot" << std::setw(12) << "J_error" << std::setw(11)
       << "eta_hx" << std::setw(11) << "eta_hy" << std::setw(11) << "eta_tau"
-      << std::setw(7) << "I_eff" << std::setw(9) << "ar" << std::setw(8) << "t[s]"
+      << std::setw(7) << "I_eff" << std::setw(11) << "ar" << std::setw(8) << "t[s]"
       << std::endl;
 }
 
@@ -220,7 +220,7 @@ void print_loop_row(std::ostream &out, const LoopRow &row)
       << std::setw(6) << row.n_t << std::setw(10) << std::size_t(row.n_tot)
       << std::setw(12) << std::setprecision(3) << row.J_error() << std::setw(11)
       << row.eta_h[0] << std::setw(11) << row.eta_h[1] << std::setw(11) << row.eta_tau
-      << std::setw(7) << std::setprecision(3) << row.I_eff() << std::setw(9)
+      << std::setw(7) << std::setprecision(3) << row.I_eff() << std::setw(11)
       << std::setprecision(4) << row.ar << std::setw(8) << std::setprecision(3)
       << row.t_primal + row.t_adjoint + row.t_estimate + row.t_refine << std::endl;
 }
