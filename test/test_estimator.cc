@@ -96,6 +96,15 @@ Vector<double> load(const Space<2> &space, const TemporalBasis &basis,
   return F;
 }
 
+bool crosswind(const std::string &variant)
+{
+  return variant.find("+crosswind") != std::string::npos;
+}
+std::string base_variant(const std::string &variant)
+{
+  return variant.substr(0, variant.find('+'));
+}
+
 struct Problem
 {
   std::unique_ptr<Scene<2>> scene;
@@ -104,19 +113,25 @@ struct Problem
   TemporalBasis basis;
   TimeMesh mesh;
   /// `variant` poly_space: b, alpha depend on t; constant: they do not (the estimator
-  /// then applies A and S' through cell matrices).
+  /// then applies A and S' through cell matrices). A suffix "+crosswind" adds the
+  /// crosswind diffusion (crosswind0 = 0.8) to the stabilized space, with eps = 1e-3 so
+  /// that it acts on every cell.
   Problem(unsigned int p, unsigned int r, const std::string &variant = "poly_space")
-      : scene(create_scene<2>(Parameters::from_overrides({"scene.name=manufactured",
-                                                          "scene.variant=" + variant,
-                                                          "scene.epsilon=0.5"}))),
+      : scene(create_scene<2>(Parameters::from_overrides(
+            {"scene.name=manufactured", "scene.variant=" + base_variant(variant),
+             crosswind(variant) ? "scene.epsilon=1e-3" : "scene.epsilon=0.5"}))),
         basis(r), mesh(TimeMesh::uniform(0.6, 2))
   {
     mesh.t[1] = 0.25; // unequal slabs
     make_mesh(tria);
     galerkin = std::make_unique<Space<2>>(*scene, tria, p,
                                           Stabilization{0., SupgLength::volume, 0.});
-    supg = std::make_unique<Space<2>>(*scene, tria, p,
-                                      Stabilization{0.7, SupgLength::volume, 0.});
+    Stabilization stab{0.7, SupgLength::volume, 0.};
+    stab.crosswind0 = crosswind(variant) ? 0.8 : 0.;
+    supg = std::make_unique<Space<2>>(*scene, tria, p, stab);
+    for (const auto &cell : tria.active_cell_iterators())
+      if (crosswind(variant) && !(supg->crosswind(cell).eps > 0.))
+        throw std::logic_error("the crosswind term must act on every cell");
     galerkin->setup();
     supg->setup();
   }
@@ -207,12 +222,17 @@ TEST_P(AdjointLocalization, AdjointFormsSumToGlobalForms)
   }
 }
 
+// "+crosswind": the crosswind diffusion of the stabilized space is part of S and S'
 INSTANTIATE_TEST_SUITE_P(TemporalDegreeAndCoefficients, Localization,
                          ::testing::Combine(::testing::Values(0u, 1u, 2u),
-                                            ::testing::Values("poly_space", "constant")));
+                                            ::testing::Values("poly_space", "constant",
+                                                              "poly_space+crosswind",
+                                                              "constant+crosswind")));
 INSTANTIATE_TEST_SUITE_P(TemporalDegreeAndCoefficients, AdjointLocalization,
                          ::testing::Combine(::testing::Values(0u, 1u, 2u),
-                                            ::testing::Values("poly_space", "constant")));
+                                            ::testing::Values("poly_space", "constant",
+                                                              "poly_space+crosswind",
+                                                              "constant+crosswind")));
 
 // TimeIndicator::higher_order: eta_tau = rho*(u, z)(u_r+1 - u) + J_T(u_r+1(T) - u(T)).
 // Heat with u = (x^2 - x)(y^2 - y)(-t/4): Q2 in space, linear in t, so dG(1) (u_r+1)

@@ -55,9 +55,10 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
       const double jx = fv_p.JxW(q) * wt;
       for (unsigned int l = 0; l < nw; ++l)
       {
+        const Tensor<1, dim> &gw = fv_w.shape_grad(l, q);
         rho.val[m](l) += jx * R * fv_w.shape_value(l, q);
-        supg.val[m](l) -=
-            jx * R * weak_form::supg_test(delta, cf.b, fv_w.shape_grad(l, q));
+        supg.val[m](l) += jx * (weak_form::crosswind(cw.eps, cw.b, grad, gw) -
+                                R * weak_form::supg_test(delta, cf.b, gw));
       }
     }
   }
@@ -80,7 +81,7 @@ template <int dim> void CellKernel<dim>::nodal_products(const Vector<double> &Un
     for (unsigned int l = 0; l < np; ++l)
       c(l) = Un(slab.index(idx[l], k));
     sv::vmult(terms[0], own_flux, c);
-    for (unsigned int i = 0; i < 4 && constant_coefficients; ++i)
+    for (unsigned int i = 0; i < 5 && constant_coefficients; ++i)
       sv::vmult(terms[i + 1], primal_matrices[i], c);
     for (const auto &pc : pieces)
       if (pc.kind == 0)
@@ -161,16 +162,20 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau,
     for (unsigned int k = 0; k < nodal.size(); ++k)
     {
       sv::vmult(kz[k], Kc, nodal[k]);
+      if (scale != 1.)
+        kz[k] *= scale;
+      if (supg && cw.eps != 0.) // S' also holds the crosswind form
+        sv::add_vmult(kz[k], cw.eps, adj_matrices[4], nodal[k]);
       sv::vmult(mz[k], Mc, nodal[k]);
       sv::add(A.jump, scale * basis.left_trace()[k], mz[k]);
     }
     for (unsigned int m = 0; m < g.size(); ++m)
     {
-      const double wt = tau * omega[m] * scale;
+      const double wt = tau * omega[m];
       for (unsigned int k = 0; k < nodal.size(); ++k)
       {
         sv::add(A.val[m], wt * ell[m][k], kz[k]);
-        sv::add(A.dt[m], wt * ell[m][k], mz[k]);
+        sv::add(A.dt[m], wt * scale * ell[m][k], mz[k]);
       }
     }
     return;
@@ -206,8 +211,9 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau,
         A.dt[m](l) += jx * phi * test;
         if (supg)
           A.val[m](l) +=
-              jx * weak_form::strong(cf, phi, gphi, trace(fv_w.shape_hessian(l, q))) *
-              test;
+              jx * (weak_form::strong(cf, phi, gphi, trace(fv_w.shape_hessian(l, q))) *
+                        test +
+                    weak_form::crosswind(cw.eps, cw.b, gphi, gz));
         else
           A.val[m](l) += jx * weak_form::galerkin(cf, phi, gphi, zq, gz);
       }

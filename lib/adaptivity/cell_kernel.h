@@ -114,10 +114,10 @@ private:
                dealii::Vector<double> &c) const;
 
   /// node_terms[k] for u = temporal node k of Un: [0] the face fluxes (the cell's own
-  /// side through own_flux, the neighbours' through Piece::nb_flux), [1..4]
-  /// (constant_coefficients) primal_matrices[0..3] applied to u's coefficients.
+  /// side through own_flux, the neighbours' through Piece::nb_flux), [1..5]
+  /// (constant_coefficients) primal_matrices[0..4] applied to u's coefficients.
   void nodal_products(const dealii::Vector<double> &Un) const;
-  mutable std::vector<std::array<dealii::Vector<double>, 5>> node_terms;
+  mutable std::vector<std::array<dealii::Vector<double>, 6>> node_terms;
 
   /// rho += the face terms at Gauss point m (time t, weight wt) from node_terms: half
   /// the flux jump (interior), the Neumann mismatch, -eps d_n u (Dirichlet).
@@ -144,6 +144,7 @@ private:
   std::vector<std::vector<double>> ell, dell;
   cell_iterator K;
   double delta_h = 0; // delta_K before the bound by tau_n
+  typename Space<dim>::Crosswind cw; // the cell's crosswind diffusion (Space::crosswind)
   std::vector<dealii::types::global_dof_index> idx;
   std::vector<Piece> pieces;
   mutable std::array<dealii::Vector<double>, 3> scratch; // cell-local coefficient buffers
@@ -151,15 +152,17 @@ private:
 
   /// For coefficients constant in time, A(.)(z) and S'(., z) are cell matrices applied
   /// to z (per unit temporal weight): [0] A's val part, [1] A's dt/jump part, [2] S'
-  /// val part, [3] S' dt/jump part (rows: the first slot, columns: z).
+  /// val part, [3] S' dt/jump part, [4] the crosswind form per unit eps_cw (rows: the
+  /// first slot, columns: z).
   const bool constant_coefficients;
-  std::array<dealii::FullMatrix<double>, 4> adj_matrices;
+  std::array<dealii::FullMatrix<double>, 5> adj_matrices;
   /// rho(u) and S(u) as cell matrices on u's coefficients, per unit temporal weight (S
   /// per unit delta_K), for coefficients constant in time: [0] rho from u (-(L u, w)),
   /// [1] rho from d_t u and from the jump u^+ - u^- (-(u, w)), [2] S from u
-  /// ((L u, b.grad w)), [3] S from d_t u and the jump ((u, b.grad w)); with a separable
-  /// load, (g_j, w) and (g_j, b.grad w) per term j.
-  std::array<dealii::FullMatrix<double>, 4> primal_matrices;
+  /// ((L u, b.grad w)), [3] S from d_t u and the jump ((u, b.grad w)), [4] S's
+  /// crosswind part per unit eps_cw ((P grad u, P grad w)); with a separable load,
+  /// (g_j, w) and (g_j, b.grad w) per term j.
+  std::array<dealii::FullMatrix<double>, 5> primal_matrices;
   std::vector<dealii::Vector<double>> load_rho, load_supg;
   /// the faces' terms from the cell's own side: -eps (d_n u, w), halved on interior faces
   dealii::FullMatrix<double> own_flux;

@@ -8,6 +8,8 @@
 #include "space/weak_form.h"
 #include "time/slab_vector.h"
 
+#include <deal.II/base/tensor.h>
+
 namespace anisodwr
 {
 using namespace dealii;
@@ -23,10 +25,13 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
   //   A_t: phi_l z_j;  S': strong(phi_l) s_j;  S'_t: phi_l s_j   (s = supg_test per
   //   unit delta_K)
   //   rho: -strong(u_k) phi_l, -u_k phi_l;  S: strong(u_k) s_l, u_k s_l
+  //   crosswind (per unit eps_cw): P grad phi_l . P grad z_j and P grad phi_l . grad u_k
+  //   (P the projection across b; P^T P = P)
   const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell(),
                      nq = quad.size();
   FullMatrix<double> phi(nw, nq), dphi(nw, nq), s(nw, nq), ds(nw, nq), dop(nw, nq),
-      u(np, nq), lu(np, nq), grads(nw, (dim + 1) * nq), dgrads(nw, (dim + 1) * nq);
+      u(np, nq), lu(np, nq), grads(nw, (dim + 1) * nq), dgrads(nw, (dim + 1) * nq),
+      pg(nw, dim * nq), dpg(nw, dim * nq), gu(np, dim * nq);
   for (unsigned int q = 0; q < nq; ++q)
   {
     const auto c = coefficients(q, 0.);
@@ -47,12 +52,22 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
       }
       grads(l, dim * nq + q) = p;
       dgrads(l, dim * nq + q) = jx * weak_form::transport(c, p, gp);
+      // P grad phi_l, with the weight, from weak_form's form on unit vectors
+      for (unsigned int d = 0; d < dim; ++d)
+      {
+        Tensor<1, dim> e;
+        e[d] = 1.;
+        pg(l, d * nq + q) = weak_form::crosswind(1., cw.b, gp, e);
+        dpg(l, d * nq + q) = jx * pg(l, d * nq + q);
+      }
     }
     for (unsigned int k = 0; k < np; ++k)
     {
       u(k, q) = fv_p.shape_value(k, q);
       lu(k, q) = weak_form::strong(c, u(k, q), fv_p.shape_grad(k, q),
                                    trace(fv_p.shape_hessian(k, q)));
+      for (unsigned int d = 0; d < dim; ++d)
+        gu(k, d * nq + q) = fv_p.shape_grad(k, q)[d];
     }
   }
   for (auto &M : adj_matrices)
@@ -69,6 +84,8 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
   primal_matrices[1] *= -1.;
   ds.mTmult(primal_matrices[2], lu);
   ds.mTmult(primal_matrices[3], u);
+  dpg.mTmult(adj_matrices[4], pg);
+  dpg.mTmult(primal_matrices[4], gu);
   load_rho.assign(load_terms.size(), Vector<double>(nw));
   load_supg.assign(load_terms.size(), Vector<double>(nw));
   Vector<double> g(nq);
@@ -95,6 +112,8 @@ void CellKernel<dim>::add_cell_terms_by_matrices(unsigned int m, double t, doubl
     sv::add(rho.val[m], d, terms[2]);
     sv::add(supg.val[m], delta * v, terms[3]);
     sv::add(supg.val[m], delta * d, terms[4]);
+    if (cw.eps != 0.)
+      sv::add(supg.val[m], cw.eps * v, terms[5]);
   }
   if (separable_load)
   {

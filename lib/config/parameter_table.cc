@@ -201,6 +201,12 @@ std::vector<Entry> discretization_entries()
        "Cell length h_K in delta_K = delta0 h_K: volume = |K|^(1/d) (doc/method.md §3); streamline = "
        "the "
        "length of K along b at its centre (t = 0), for anisotropic cells across layers."},
+      {"discretization", "crosswind0", "0", m(&S::crosswind0), real(0.),
+       "Crosswind diffusion beside SUPG: eps_cw,K (P grad u, P grad v)_K with P the "
+       "projection across b and eps_cw,K = crosswind0 max(0, |b| h_cw,K / 2 - eps), "
+       "h_cw,K the cell's length across b at its centre (zero on cells that resolve "
+       "the crosswind direction). Damps oscillations at characteristic layers; not "
+       "consistent (doc/method.md §3). 0: off."},
       {"discretization", "supg_tau_factor", "1", m(&S::supg_tau_factor), real(0.),
        "Bound delta_K <= supg_tau_factor * tau_n on each slab (tau_n its length), the "
        "stability condition of SUPG whose test function also multiplies du/dt; 0 drops "

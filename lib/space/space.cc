@@ -63,6 +63,31 @@ void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> 
 }
 
 template <int dim>
+double Space<dim>::length_along(const typename Triangulation<dim>::cell_iterator &cell,
+                                const Tensor<1, dim> &beta) const
+{
+  // 1 / ||J^{-1} beta||_inf at the centre (exact for parallelograms)
+  Tensor<2, dim> J;
+  for (unsigned int d = 0; d < dim; ++d)
+  {
+    // columns of the Jacobian of the (bi)linear map at the centre, from the vertices
+    Tensor<1, dim> col;
+    for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+    {
+      const double sign = (v >> d) & 1 ? 1. : -1.;
+      col += sign * cell->vertex(v) / (GeometryInfo<dim>::vertices_per_cell / 2);
+    }
+    for (unsigned int e = 0; e < dim; ++e)
+      J[e][d] = col[e];
+  }
+  const Tensor<1, dim> d = invert(J) * beta;
+  double m = 0;
+  for (unsigned int i = 0; i < dim; ++i)
+    m = std::max(m, std::abs(d[i]));
+  return 1. / m;
+}
+
+template <int dim>
 double Space<dim>::unbounded_delta(const typename Triangulation<dim>::cell_iterator &cell) const
 {
   const double delta0 = stab.delta0;
@@ -70,33 +95,30 @@ double Space<dim>::unbounded_delta(const typename Triangulation<dim>::cell_itera
     return 0.;
   if (stab.supg_length == SupgLength::streamline)
   {
-    // length of the cell along b through its centre: 1 / ||J^{-1} beta||_inf (exact
-    // for parallelograms), beta = b/|b| at the centre at t = 0
-    const Point<dim> c = cell->center();
-    const Tensor<1, dim> b = scene.convection(c, 0.);
+    // the length along beta = b/|b| at the centre at t = 0
+    const Tensor<1, dim> b = scene.convection(cell->center(), 0.);
     if (b.norm() > 0)
-    {
-      Tensor<2, dim> J;
-      for (unsigned int d = 0; d < dim; ++d)
-      {
-        // columns of the Jacobian of the (bi)linear map at the centre, from the vertices
-        Tensor<1, dim> col;
-        for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
-        {
-          const double sign = (v >> d) & 1 ? 1. : -1.;
-          col += sign * cell->vertex(v) / (GeometryInfo<dim>::vertices_per_cell / 2);
-        }
-        for (unsigned int e = 0; e < dim; ++e)
-          J[e][d] = col[e];
-      }
-      const Tensor<1, dim> d = invert(J) * (b / b.norm());
-      double m = 0;
-      for (unsigned int i = 0; i < dim; ++i)
-        m = std::max(m, std::abs(d[i]));
-      return delta0 / m;
-    }
+      return delta0 * length_along(cell, b / b.norm());
   }
   return delta0 * std::pow(cell->measure(), 1.0 / dim);
+}
+
+template <int dim>
+typename Space<dim>::Crosswind
+Space<dim>::crosswind(const typename Triangulation<dim>::cell_iterator &cell) const
+{
+  if (stab.crosswind0 == 0.)
+    return {};
+  static_assert(dim == 2, "the crosswind direction is defined in 2D");
+  const Tensor<1, dim> b = scene.convection(cell->center(), 0.);
+  const double nb = b.norm();
+  if (nb == 0.)
+    return {};
+  Tensor<1, dim> across;
+  across[0] = -b[1] / nb;
+  across[1] = b[0] / nb;
+  return {stab.crosswind0 * std::max(0., 0.5 * nb * length_along(cell, across) - scene.epsilon),
+          b};
 }
 
 template <int dim> void Space<dim>::assemble_matrices(double t, double tau, SpatialMatrices &m) const
@@ -116,6 +138,7 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
     cm = 0.;
     ca = 0.;
     const double dK = delta(cell, tau);
+    const Crosswind cw = crosswind(cell);
     for (unsigned int q = 0; q < quad.size(); ++q)
     {
       const auto c = weak_form::coefficients(scene, fv.quadrature_point(q), t);
@@ -133,7 +156,8 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
               weak_form::strong(c, phi_j, grad_j, trace(fv.shape_hessian(j, q)));
           cm(i, j) += phi_j * (phi_i + supg_i) * JxW;
           ca(i, j) += (weak_form::galerkin(c, phi_j, grad_j, phi_i, grad_i) +
-                       strong_j * supg_i) *
+                       strong_j * supg_i +
+                       weak_form::crosswind(cw.eps, cw.b, grad_j, grad_i)) *
                       JxW;
         }
       }

@@ -94,12 +94,23 @@ public:
     const double f = stab.supg_tau_factor;
     return f > 0 ? std::min(d, f * tau) : d;
   }
+  /// The crosswind diffusion of a cell: eps_cw,K (Stabilization::crosswind0; 0 if off)
+  /// and the direction b across which it acts (b at the centre at t = 0).
+  struct Crosswind
+  {
+    double eps = 0.;
+    dealii::Tensor<1, dim> b;
+  };
+  Crosswind crosswind(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
   /// Whether delta_K (and so M, A and the loads) depends on the slab length.
   bool delta_depends_on_tau() const { return stab.supg_tau_factor > 0 && stab.delta0 > 0; }
 
   const Scene<dim> &scene;
 
 private:
+  /// The length of `cell` along the unit vector `beta` through its centre.
+  double length_along(const typename dealii::Triangulation<dim>::cell_iterator &cell,
+                      const dealii::Tensor<1, dim> &beta) const;
   const Stabilization stab;
   std::function<bool(dealii::types::global_dof_index)> downstream;
   dealii::FE_Q<dim> fe;

@@ -31,5 +31,8 @@ struct Stabilization
   SupgLength supg_length = SupgLength::volume;
   /// delta_K <= supg_tau_factor * tau_n on a slab of length tau_n; 0: no bound
   double supg_tau_factor = 1.;
+  /// crosswind diffusion eps_cw,K = crosswind0 max(0, |b| h_cw,K / 2 - eps) across b
+  /// (h_cw,K: the length of K across b at its centre); 0 turns it off
+  double crosswind0 = 0.;
 };
 } // namespace anisodwr

@@ -64,6 +64,20 @@ double supg_test(double delta, const dealii::Tensor<1, dim> &b,
   return delta * (b * grad_v);
 }
 
+/// The crosswind diffusion integrand eps_cw (P grad u, P grad v), P = I - b b^T / |b|^2
+/// the projection across b (0 where b = 0); the method takes b at the cell's centre at
+/// t = 0 (Space::crosswind), so that the term is one matrix per mesh. Not consistent:
+/// the scheme's error gains O(eps_cw) where it acts; the estimator counts it in S(u).
+template <int dim>
+double crosswind(double eps_cw, const dealii::Tensor<1, dim> &b,
+                 const dealii::Tensor<1, dim> &grad_u, const dealii::Tensor<1, dim> &grad_v)
+{
+  const double bb = b * b;
+  if (eps_cw == 0. || bb == 0.)
+    return 0.;
+  return eps_cw * (grad_u * grad_v - (b * grad_u) * (b * grad_v) / bb);
+}
+
 /// The strong residual f - d_t u - L u.
 template <int dim>
 double residual(const Coefficients<dim> &c, double f, double dt_u, double u,
