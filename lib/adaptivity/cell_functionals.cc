@@ -81,7 +81,9 @@ template <int dim> void CellKernel<dim>::nodal_products(const Vector<double> &Un
     for (unsigned int l = 0; l < np; ++l)
       c(l) = Un(slab.index(idx[l], k));
     sv::vmult(terms[0], own_flux, c);
-    for (unsigned int i = 0; i < 5 && constant_coefficients; ++i)
+    // (the crosswind matrix [4] only where the cell has the term)
+    const unsigned int n_matrices = constant_coefficients ? (cw.eps != 0. ? 5 : 4) : 0;
+    for (unsigned int i = 0; i < n_matrices; ++i)
       sv::vmult(terms[i + 1], primal_matrices[i], c);
     for (const auto &pc : pieces)
       if (pc.kind == 0)

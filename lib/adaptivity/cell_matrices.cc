@@ -84,8 +84,11 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
   primal_matrices[1] *= -1.;
   ds.mTmult(primal_matrices[2], lu);
   ds.mTmult(primal_matrices[3], u);
-  dpg.mTmult(adj_matrices[4], pg);
-  dpg.mTmult(primal_matrices[4], gu);
+  if (cw.eps != 0.)
+  {
+    dpg.mTmult(adj_matrices[4], pg);
+    dpg.mTmult(primal_matrices[4], gu);
+  }
   load_rho.assign(load_terms.size(), Vector<double>(nw));
   load_supg.assign(load_terms.size(), Vector<double>(nw));
   Vector<double> g(nq);
