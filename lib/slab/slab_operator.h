@@ -91,7 +91,7 @@ public:
   /// The mode solver (its Schur form and factor sizes; empty unless modes()).
   const ModeDirectSolver &mode_solver() const { return modes_lu; }
   /// solver.type = auto: the last prepare()'s choice and its reason, e.g. "UMFPACK
-  /// (predicted UMFPACK peak 812 MB, budget 12052 MB)"; empty for direct and iterative.
+  /// (predicted UMFPACK peak 812 MB + 10%, budget 12052 MB)"; empty for direct and iterative.
   const std::string &auto_choice() const { return choice; }
   /// UMFPACK's figures of the last analysis and factorization.
   const DirectSolverInfo &direct_info() const { return lu.info(); }

@@ -1,5 +1,8 @@
 #include "slab/solver_choice.h"
 
+#include "solver/temporal_schur.h"
+#include "time/temporal_basis.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,10 +21,21 @@ double physical_memory_mb()
 
 namespace
 {
-/// The last UMFPACK factorization measured per (degree, m) in this process: unknowns and
-/// peak (MB); the primal and the adjoint may march in two threads.
-std::map<std::pair<unsigned int, unsigned int>, std::pair<double, double>> lu_records;
+/// The last UMFPACK factorization measured per (degree, m) in this process: unknowns,
+/// heap peak and heap held afterwards (MB); the primal and the adjoint may march in two
+/// threads.
+struct LuRecord
+{
+  double n = 0, peak = 0, held = 0;
+};
+std::map<std::pair<unsigned int, unsigned int>, LuRecord> lu_records;
 std::mutex lu_records_mutex;
+/// One kind of mode LU per degree: unknowns, factor and peak (MB) of the last one.
+struct ModeRecord
+{
+  double n = 0, factor = 0, peak = 0;
+};
+std::map<std::pair<unsigned int, bool>, ModeRecord> mode_records; // (degree, complex)
 } // namespace
 
 double fitted_lu_mb(double n, unsigned int degree, unsigned int m)
@@ -29,35 +43,55 @@ double fitted_lu_mb(double n, unsigned int degree, unsigned int m)
   // Measured UMFPACK peaks (bytes per slab unknown) on the adaptive meshes of
   // moving_hump and hemker, 1e3-2.4e5 unknowns: Q1 755 (m = 1), 1370 (m = 3); Q2 970,
   // 2040 (doc/results.md, "Slab solvers"), i.e. a work space W plus F per temporal
-  // DoF; 25% margin.
+  // DoF; 25% margin. Plus the solver's copy of the matrix (8-byte indices and values,
+  // (degree + 2)^2 m entries per row on a uniform mesh), which the measured heap peaks
+  // of record_lu include.
   const double W = 450., F = degree > 1 ? 540. : 310.;
-  return 1.25 * n * (W + F * m) / (1024. * 1024.);
+  const double copy = 16. * (degree + 2.) * (degree + 2.) * m + 8.;
+  return n * (1.25 * (W + F * m) + copy) / (1024. * 1024.);
 }
+
+namespace
+{
+/// Size per unknown of a record at n0, at n: growing like log n.
+double extrapolate(double value, double n0, double n)
+{
+  return value * (n / n0) *
+         std::max(1., std::log2(std::max(n, 2.)) / std::log2(std::max(n0, 2.)));
+}
+} // namespace
 
 double predicted_lu_mb(double n, unsigned int degree, unsigned int m)
 {
   const std::lock_guard<std::mutex> lock(lu_records_mutex);
   const auto record = lu_records.find({degree, m});
   if (record != lu_records.end())
-  {
-    // UMFPACK's peak per unknown of the last factorization, allowed to grow like log n
-    const auto [n0, peak0] = record->second;
-    return 1.1 * peak0 * (n / n0) *
-           std::max(1., std::log2(std::max(n, 2.)) / std::log2(std::max(n0, 2.)));
-  }
+    return extrapolate(record->second.peak, record->second.n, n);
   return fitted_lu_mb(n, degree, m);
 }
 
-void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb)
+double predicted_lu_held_mb(double n, unsigned int degree, unsigned int m)
 {
   const std::lock_guard<std::mutex> lock(lu_records_mutex);
-  lu_records[{degree, m}] = {n, peak_mb};
+  const auto record = lu_records.find({degree, m});
+  if (record != lu_records.end())
+    return extrapolate(record->second.held, record->second.n, n);
+  // the fit's factor part
+  const double F = degree > 1 ? 540. : 310.;
+  return 1.25 * n * F * m / (1024. * 1024.);
+}
+
+void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb, double held_mb)
+{
+  const std::lock_guard<std::mutex> lock(lu_records_mutex);
+  lu_records[{degree, m}] = {n, peak_mb, held_mb};
 }
 
 void reset_lu_records()
 {
   const std::lock_guard<std::mutex> lock(lu_records_mutex);
   lu_records.clear();
+  mode_records.clear();
 }
 
 double auto_memory_budget_mb(const SlabSolverOptions &opt)
@@ -82,24 +116,81 @@ bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m
   // UMFPACK factorizes once and back-substitutes per slab (1 s/slab against 4.9 s for
   // the best Krylov solver at 2.1e6 unknowns, even with the factorization amortized over
   // 10 slabs): while the factors fit, it wins.
-  if (predicted_lu_mb(n, degree, m) > auto_memory_budget_mb(opt))
+  if (1.1 * predicted_lu_mb(n, degree, m) > auto_memory_budget_mb(opt))
     return true;
   return !factorization_reused && n * m >= auto_size_threshold(opt, degree);
 }
 
+unsigned int complex_mode_pairs(unsigned int m) { return m / 2; }
+unsigned int real_modes(unsigned int m) { return m % 2; }
+
+std::vector<unsigned int> mode_blocks(unsigned int m)
+{
+  // the real Schur form of dG(m-1)'s T2^{-1} T1 (tau = 1: tau scales every eigenvalue
+  // alike and leaves the order), once per m
+  static std::map<unsigned int, std::vector<unsigned int>> cache;
+  static std::mutex mutex;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto &blocks = cache[m];
+  if (blocks.empty() && m > 0)
+  {
+    const TemporalBasis basis(m - 1);
+    for (const auto &b : TemporalSchur(basis.derivative_with_jump(), basis.mass()).blocks)
+      blocks.push_back(b.size);
+  }
+  return blocks;
+}
+
+ModesMemory predicted_modes_memory(double n_space, unsigned int degree, unsigned int m)
+{
+  // Without a record: fitted_lu_mb's work space and factor part for one real LU; a
+  // complex LU holds 1.8 times the real factors (measured on moving_hump: 1.80 for Q2
+  // and Q3) and about the same work space.
+  const double fit = fitted_lu_mb(n_space, degree, 1),
+               fit_factor = 1.25 * n_space * (degree > 1 ? 540. : 310.) / (1024. * 1024.);
+  ModeRecord real{n_space, fit_factor, fit}, complex{n_space, 1.8 * fit_factor, fit + 0.8 * fit_factor};
+  {
+    const std::lock_guard<std::mutex> lock(lu_records_mutex);
+    for (const bool is_complex : {false, true})
+    {
+      const auto r = mode_records.find({degree, is_complex});
+      if (r != mode_records.end())
+        (is_complex ? complex : real) =
+            ModeRecord{n_space, extrapolate(r->second.factor, r->second.n, n_space),
+                       extrapolate(r->second.peak, r->second.n, n_space)};
+    }
+  }
+  // each mode's factorization peak beside the factors of the modes before it, in the
+  // order of the Schur form's blocks
+  ModesMemory mem;
+  for (const unsigned int size : mode_blocks(m))
+  {
+    const ModeRecord &mode = size == 2 ? complex : real;
+    mem.peak_mb = std::max(mem.peak_mb, mem.factors_mb + mode.peak);
+    mem.factors_mb += mode.factor;
+  }
+  return mem;
+}
+
 double predicted_modes_mb(double n_space, unsigned int degree, unsigned int m)
 {
-  // The modes' factors are each about the factor part of one N_space LU; the last
-  // factorization adds its work space. A complex pair's LU has twice the values of a
-  // real one and about the same integer part: counted as two real LUs.
-  return m * predicted_lu_mb(n_space, degree, 1);
+  return predicted_modes_memory(n_space, degree, m).peak_mb;
+}
+
+void record_modes(double n_space, unsigned int degree, const ModeLuFigures &f)
+{
+  const std::lock_guard<std::mutex> lock(lu_records_mutex);
+  if (f.real_peak_mb > 0)
+    mode_records[{degree, false}] = {n_space, f.real_factor_mb, f.real_peak_mb};
+  if (f.complex_peak_mb > 0)
+    mode_records[{degree, true}] = {n_space, f.complex_factor_mb, f.complex_peak_mb};
 }
 
 bool auto_picks_modes(const SlabSolverOptions &opt, double n_space, unsigned int m,
                       unsigned int degree, bool factorization_reused)
 {
   return m >= 2 && factorization_reused && opt.direct_solver == DirectEngine::umfpack &&
-         predicted_modes_mb(n_space, degree, m) <= auto_memory_budget_mb(opt);
+         1.1 * predicted_modes_mb(n_space, degree, m) <= auto_memory_budget_mb(opt);
 }
 
 bool solves_by_modes(const SlabSolverOptions &options, double n_space, unsigned int m,

@@ -3,6 +3,9 @@
 // physical memory, UMFPACK's factorization peak (fitted and extrapolated from measured
 // factorizations) and the mode solver's peak (doc/results.md, "Slab solvers").
 #include "slab/slab_solver_options.h"
+#include "solver/mode_figures.h"
+
+#include <vector>
 
 namespace anisodwr
 {
@@ -12,13 +15,19 @@ double physical_memory_mb();
 /// UMFPACK factorization peak (MB) of an n x n slab matrix of FE_Q(degree) with m
 /// temporal DoFs per node as fitted to measured peaks (doc/results.md, "Slab solvers").
 double fitted_lu_mb(double n, unsigned int degree, unsigned int m);
-/// Predicted UMFPACK factorization peak (MB): extrapolated from the last factorization
-/// of the same degree and m in this process (record_lu), else fitted_lu_mb. UMFPACK's
-/// own symbolic bound is far too loose for this (33x at 2.4e5 unknowns).
+/// Predicted UMFPACK factorization peak (MB): extrapolated from the measured heap peak
+/// (with the solver's copy of the matrix) of the last factorization of the same degree
+/// and m in this process (record_lu), else fitted_lu_mb. UMFPACK's own symbolic bound
+/// is far too loose for this (33x at 2.4e5 unknowns).
 double predicted_lu_mb(double n, unsigned int degree, unsigned int m);
+/// The heap the factorization holds afterwards (factors, analysis), predicted the same
+/// way (MB).
+double predicted_lu_held_mb(double n, unsigned int degree, unsigned int m);
 /// Records a measured factorization peak for predicted_lu_mb (SlabOperator does); the
-/// records are per process (not thread-safe). reset_lu_records forgets them (tests).
-void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb);
+/// records are per process (not thread-safe). reset_lu_records forgets them and the
+/// mode solver's (record_modes) (tests).
+void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb,
+               double held_mb);
 void reset_lu_records();
 
 /// The memory a UMFPACK factorization may take under solver.type = auto (MB):
@@ -34,20 +43,45 @@ double auto_size_threshold(const SlabSolverOptions &opt, unsigned int degree);
 
 /// Which solver solver.type = auto picks (true: iterative) for n slab unknowns with m
 /// temporal DoFs per node, given whether one factorization serves all slabs: iterative
-/// if predicted_lu_mb exceeds auto_memory_budget_mb, or if each slab needs its own
+/// if predicted_lu_mb with a 10% margin exceeds auto_memory_budget_mb, or if each slab needs its own
 /// factorization (time-dependent coefficients, reuse_factorization = false) and
 /// N_space m^2 >= auto_size_threshold; UMFPACK otherwise.
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused);
 
-/// Predicted peak (MB) of the mode solver for N_space = n_space and m temporal modes:
-/// the factors of m - 1 real N_space LUs (a complex pair counts as two) held while the
-/// last one factorizes, each as predicted_lu_mb(n_space, degree, 1).
+/// The temporal modes of dG(r) with m = r+1 basis functions: the real Schur form of
+/// T2^{-1} T1 has m / 2 complex pairs and, for odd m, one real eigenvalue (the
+/// denominator of the subdiagonal Pade approximant of exp has one real root for odd
+/// degree, none for even; checked against TemporalSchur in the tests).
+unsigned int complex_mode_pairs(unsigned int m);
+unsigned int real_modes(unsigned int m);
+/// The block sizes of that Schur form in the mode solver's order (1: a real mode, 2: a
+/// complex pair), computed once per m.
+std::vector<unsigned int> mode_blocks(unsigned int m);
+
+/// Predicted memory of the mode solver for N_space = n_space and m temporal modes (MB):
+/// the factors of all modes (held while the slabs are solved) and the peak of the
+/// factorization: each mode's peak beside the factors of those before it, in the order
+/// of the Schur form's blocks (mode_blocks). The
+/// peaks are the measured heap of UMFPACK with the solver's copy of the mode matrix
+/// (solver/umfpack_memory.h), the factors what UMFPACK holds afterwards. Per kind
+/// of mode (real, complex) extrapolated from the last factorization of that kind and
+/// degree in this process (record_modes: the size per unknown allowed to grow like
+/// log n), else from fitted_lu_mb (a complex factor 1.8 real ones, measured).
+struct ModesMemory
+{
+  double factors_mb = 0, peak_mb = 0;
+};
+ModesMemory predicted_modes_memory(double n_space, unsigned int degree, unsigned int m);
+/// predicted_modes_memory(...).peak_mb
 double predicted_modes_mb(double n_space, unsigned int degree, unsigned int m);
+/// Records the figures of a mode factorization of N_space = n_space (SlabOperator does).
+void record_modes(double n_space, unsigned int degree, const ModeLuFigures &f);
 
 /// Whether solver.type = auto picks the mode solver: m = r+1 >= 2, one factorization
 /// serves all slabs (coefficients constant in time, reuse_factorization), the direct
-/// solver is UMFPACK and predicted_modes_mb fits auto_memory_budget_mb.
+/// solver is UMFPACK and predicted_modes_mb, with a 10% margin, fits
+/// auto_memory_budget_mb.
 bool auto_picks_modes(const SlabSolverOptions &opt, double n_space, unsigned int m,
                       unsigned int degree, bool factorization_reused);
 

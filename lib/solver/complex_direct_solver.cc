@@ -1,5 +1,6 @@
 #include "solver/complex_direct_solver.h"
 
+#include "solver/umfpack_memory.h"
 #include "solver/umfpack_status.h"
 
 #include <algorithm>
@@ -79,12 +80,19 @@ void ComplexDirectSolver::factorize(std::complex<double> z,
   }
   double info[UMFPACK_INFO];
   void *symbolic = nullptr;
+  umfpack::HeapMeter meter;
   check("umfpack_zl_symbolic",
         umfpack_zl_symbolic(long(n), long(n), Ap.data(), Ai.data(), Ax.data(), Az.data(),
                             &symbolic, control, info),
         n);
   figures.predicted_peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY_ESTIMATE);
   figures.predicted_factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE_ESTIMATE);
+  const double copy_mb =
+      double(Ap.capacity() * sizeof(long) + Ai.capacity() * sizeof(long) +
+             (Ax.capacity() + Az.capacity()) * sizeof(double)) /
+      (1024. * 1024.);
+  figures.heap_peak_mb = meter.peak_mb() + copy_mb;
+  meter.reset_peak();
   const long status = umfpack_zl_numeric(Ap.data(), Ai.data(), Ax.data(), Az.data(),
                                          symbolic, &numeric, control, info);
   umfpack_zl_free_symbolic(&symbolic);
@@ -93,6 +101,8 @@ void ComplexDirectSolver::factorize(std::complex<double> z,
   check("umfpack_zl_numeric", status, n);
   figures.peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY);
   figures.factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE);
+  figures.heap_peak_mb = std::max(figures.heap_peak_mb, meter.peak_mb() + copy_mb);
+  figures.heap_held_mb = meter.held_mb();
   if (control[UMFPACK_IRSTEP] == 0)
   {
     // the solves do not read the matrix

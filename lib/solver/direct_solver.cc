@@ -51,6 +51,13 @@ void DirectSolver::clear()
   figures = DirectSolverInfo();
 }
 
+double DirectSolver::copy_mb() const
+{
+  return double(Ap.capacity() * sizeof(long) + Ai.capacity() * sizeof(long) +
+                Ax.capacity() * sizeof(double)) /
+         (1024. * 1024.);
+}
+
 void DirectSolver::release_matrix()
 {
   std::vector<long>().swap(Ap);
@@ -90,12 +97,14 @@ const DirectSolverInfo &DirectSolver::analyze(const dealii::SparseMatrix<double>
     Ap[i + 1] = start + long(row.size());
   }
   double info[UMFPACK_INFO];
+  meter.restart();
   check("umfpack_dl_symbolic",
         umfpack_dl_symbolic(long(n), long(n), Ap.data(), Ai.data(), Ax.data(), &symbolic,
                             control, info),
         n, Ax.size());
   figures.predicted_peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY_ESTIMATE);
   figures.predicted_factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE_ESTIMATE);
+  figures.heap_peak_mb = meter.peak_mb() + copy_mb();
   return figures;
 }
 
@@ -108,6 +117,7 @@ void DirectSolver::factorize()
   if (numeric)
     umfpack_dl_free_numeric(&numeric);
   double info[UMFPACK_INFO];
+  meter.reset_peak();
   const long status =
       umfpack_dl_numeric(Ap.data(), Ai.data(), Ax.data(), symbolic, &numeric, control, info);
   if (status != UMFPACK_OK && numeric) // (a singular matrix still gets factors)
@@ -115,6 +125,8 @@ void DirectSolver::factorize()
   check("umfpack_dl_numeric", status, Ap.size() - 1, Ax.size());
   figures.peak_mb = megabytes(info, UMFPACK_PEAK_MEMORY);
   figures.factor_mb = megabytes(info, UMFPACK_NUMERIC_SIZE);
+  figures.heap_peak_mb = std::max(figures.heap_peak_mb, meter.peak_mb() + copy_mb());
+  figures.heap_held_mb = meter.held_mb();
   // Without iterative refinement the solves do not read A: its copy can go.
   if (control[UMFPACK_IRSTEP] == 0)
     release_matrix();

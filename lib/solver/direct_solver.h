@@ -3,6 +3,7 @@
 // and UMFPACK's figures (memory peak, factor size) exposed: solver.type = auto
 // predicts the next factorization's peak from them (slab/slab_operator.h).
 #include "solver/direct_engine.h"
+#include "solver/umfpack_memory.h"
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -22,6 +23,10 @@ struct DirectSolverInfo
   double predicted_peak_mb = 0, predicted_factor_mb = 0;
   /// after factorize(): the actual peak of the factorization and the size of the factors
   double peak_mb = 0, factor_mb = 0;
+  /// measured (UMFPACK only): the heap peak of the analysis or the factorization,
+  /// whichever is larger, with the solver's copy of the matrix, and the heap UMFPACK
+  /// holds afterwards (factors and analysis; solver/umfpack_memory.h)
+  double heap_peak_mb = 0, heap_held_mb = 0;
 };
 
 /// UMFPACK: with 2 refinement steps (UMFPACK's default) the same arithmetic as
@@ -59,6 +64,9 @@ private:
   double control[20];
   void *symbolic = nullptr, *numeric = nullptr;
   DirectSolverInfo figures;
+  umfpack::HeapMeter meter;
+  /// the heap bytes of the copy of A (Ap, Ai, Ax)
+  double copy_mb() const;
   std::unique_ptr<MumpsSolver> mumps; // engine mumps
   void release_matrix();
 };

@@ -18,7 +18,8 @@ void ModeDirectSolver::clear()
   complex_lu.clear();
   S1 = nullptr;
   form = TemporalSchur();
-  factors_mb = peak = real_peak = 0;
+  factors_mb = peak = 0;
+  figures = ModeLuFigures();
 }
 
 void ModeDirectSolver::factorize(const KronSplit &k)
@@ -48,7 +49,8 @@ void ModeDirectSolver::factorize(const KronSplit &k)
       lu->factorize();
       mode_peak = lu->info().peak_mb;
       mode_factor = lu->info().factor_mb;
-      real_peak = std::max(real_peak, mode_peak);
+      figures.real_factor_mb = std::max(figures.real_factor_mb, lu->info().heap_held_mb);
+      figures.real_peak_mb = std::max(figures.real_peak_mb, lu->info().heap_peak_mb);
       real_lu[b] = std::move(lu);
     }
     else
@@ -57,7 +59,8 @@ void ModeDirectSolver::factorize(const KronSplit &k)
       lu->factorize({blk.alpha, blk.beta}, *k.S1, *k.S2);
       mode_peak = lu->info().peak_mb;
       mode_factor = lu->info().factor_mb;
-      real_peak = std::max(real_peak, 0.5 * mode_peak);
+      figures.complex_factor_mb = std::max(figures.complex_factor_mb, lu->info().heap_held_mb);
+      figures.complex_peak_mb = std::max(figures.complex_peak_mb, lu->info().heap_peak_mb);
       complex_lu[b] = std::move(lu);
     }
     peak = std::max(peak, factors_mb + mode_peak);

@@ -13,6 +13,7 @@
 #include "solver/direct_solver.h"
 #include "solver/iterative_solver.h"
 #include "solver/temporal_schur.h"
+#include "solver/mode_figures.h"
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -45,9 +46,8 @@ public:
   /// The largest memory UMFPACK held during the factorizations (MB): the factors of the
   /// modes already done plus the peak of the current one, maximized over the modes.
   double peak_mb() const { return peak; }
-  /// The largest peak of one real mode, or half of one complex mode's (MB): what one
-  /// N_space x N_space real factorization of this kind takes.
-  double real_peak_mb() const { return real_peak; }
+  /// Factor size and peak of the largest real and of the largest complex mode LU (MB).
+  const ModeLuFigures &mode_figures() const { return figures; }
 
 private:
   unsigned int refinement_steps;
@@ -58,7 +58,8 @@ private:
   /// per block of the Schur form: a real LU (1x1) or a complex LU (2x2)
   std::vector<std::unique_ptr<DirectSolver>> real_lu;
   std::vector<std::unique_ptr<ComplexDirectSolver>> complex_lu;
-  double factors_mb = 0, peak = 0, real_peak = 0;
+  double factors_mb = 0, peak = 0;
+  ModeLuFigures figures;
 
   void solve_block(std::size_t b, std::vector<dealii::Vector<double>> &y,
                    bool transpose) const;

@@ -233,6 +233,9 @@ void AdaptiveLoop::run()
 
 bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
 {
+  // (freed pages go back to the system between the phases: the next phase's
+  // factorizations map fresh memory and would sit beside them; memory_estimate.h)
+  release_free_memory();
   const auto primal_space = make_space(prm, *scene, tria, prm.discretization.p);
   const auto adjoint_space = make_adjoint_space(prm, *scene, tria, q);
   const Space<2> &primal = *primal_space, &adjoint = *adjoint_space;
@@ -292,11 +295,13 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
       report_auto_choice(row.loop, 0, op);
       row.lu_primal_mb = op.timings().factor_mb;
     }
+    release_free_memory();
     if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)
     {
       SlabOperator<2> op(primal, basis_hi, march_solver_options(0, "", concurrent));
       U_hi = march_primal(primal, mesh, basis_hi, op, opt);
     }
+    release_free_memory();
     row.t_primal = t.wall_time();
     evaluate_goals(row, primal, U);
     gate.release(true);
@@ -402,6 +407,7 @@ void AdaptiveLoop::estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2
   // The estimator solves no slab system: the adjoint's factors and matrices go before
   // it runs.
   adj.op.reset();
+  release_free_memory();
   if (by_goal)
   {
     estimate_by_goal(row, ind, primal, adjoint, std::move(adj.Z), U, hi);

@@ -1,3 +1,4 @@
+#include <malloc.h>
 #include "study/memory_estimate.h"
 #include "study/options.h"
 
@@ -34,73 +35,136 @@ struct Phase
   double total() const { return solutions + matrices + solver; }
 };
 
-/// Spatial matrices (M, A and their condensed forms), the slab pattern and matrix, and
-/// the solver of one slab operator.
-void add_operator(const SlabSystemSize &s, const MemoryModel &m, Phase &p)
+/// One slab operator (bytes): its spatial and slab matrices, and its solver at the
+/// factorization's peak and while it solves.
+struct Operator
 {
-  const double t = m.r + 1, nnz_k = t * t * s.nnz_space, n_k = t * s.n_space;
-  const double sets = m.time_dependent ? m.r + 3 : 1;
+  double matrices = 0, factorizing = 0, solving = 0;
+  /// assembly matrices beside `matrices` before the factorization
+  double assembly = 0;
+};
+
+/// The operator of system s with t temporal DoFs per node.
+Operator slab_operator(const SlabSystemSize &s, const MemoryModel &m, unsigned int t)
+{
+  Operator op;
+  if (s.n_space <= 0)
+    return op;
+  const double nnz_k = double(t) * t * s.nnz_space, n_k = t * s.n_space;
+  const double sets = m.time_dependent ? t + 2 : 1;
   if (s.modes)
   {
     // K is not assembled. Kept: M (jump), A (Dirichlet lift), M_c (the Schur form's
-    // coupling), and A_c unless released; the solver: UMFPACK's copy of one mode matrix
-    // (complex: twice the values), the factors of all modes and the last one's work
-    // space (predicted_modes_mb), and the 2(r+1) spatial vectors of a solve.
-    p.matrices += (m.lean_direct ? 3 : 4) * 8 * s.nnz_space;
-    p.solver += 24 * s.nnz_space + 16 * s.n_space + 8 * (2 * t + 2) * s.n_space +
-                predicted_modes_mb(s.n_space, s.degree, m.r + 1) * MB;
-    return;
+    // coupling), and A_c while the modes factorize unless released; the solver: the
+    // modes' factorization peak (with UMFPACK's copy of the mode matrix), the factors
+    // of all modes and the 2t + 2 spatial vectors of a solve afterwards.
+    const ModesMemory lu = predicted_modes_memory(s.n_space, s.degree, t);
+    op.matrices = (m.lean_direct ? 3 : 4) * 8 * s.nnz_space;
+    op.assembly = m.lean_direct ? 8 * s.nnz_space : 0.;
+    op.factorizing = op.assembly + lu.peak_mb * MB;
+    op.solving = 8 * (2 * t + 2) * s.n_space + lu.factors_mb * MB;
+    return op;
   }
-  // (lean: only M and A stay once UMFPACK has its copy; with concurrent marches the
-  // other march runs through that release, so the assembly's matrices count)
-  if (!s.iterative && m.lean_direct && !m.concurrent)
-    p.matrices += 2 * 8 * s.nnz_space;
-  else
-    p.matrices += sets * 4 * 8 * s.nnz_space + 12 * nnz_k + 8 * n_k;
+  // The assembly's matrices: the spatial sets (M, A, M_c, A_c), K and its pattern.
+  const double assembly = sets * 4 * 8 * s.nnz_space + 12 * nnz_k + 8 * n_k;
   if (s.iterative)
-    p.solver += 8. * m.krylov_vectors * n_k + precondition_bytes_per_nnz * nnz_k;
+  {
+    op.matrices = assembly;
+    op.factorizing = op.solving =
+        8. * m.krylov_vectors * n_k + precondition_bytes_per_nnz * nnz_k;
+    return op;
+  }
+  // UMFPACK's heap peak (the copy it factorizes, factors and work space) as
+  // solver.type = auto predicts it: from the run's last factorization of this degree and
+  // r, else from the fit to measured peaks; afterwards the factors and the vectors of a
+  // solve
+  const double peak = predicted_lu_mb(n_k, s.degree, t) * MB;
+  op.solving = 16 * n_k + predicted_lu_held_mb(n_k, s.degree, t) * MB;
+  if (m.lean_direct)
+  {
+    // M_c, A_c and K go before the numeric factorization, M and A stay: the larger of
+    // the assembly and the factorization beside M and A
+    op.matrices = 2 * 8 * s.nnz_space;
+    op.assembly = assembly - op.matrices;
+    op.factorizing = std::max(op.assembly, peak);
+  }
   else
-    // the copy UMFPACK factorizes (long indices, values) + UMFPACK's peak (factors and
-    // work space) as solver.type = auto predicts it: from the run's last factorization
-    // of this degree and r, else from the fit to measured peaks
-    p.solver += 16 * nnz_k + 8 * n_k + predicted_lu_mb(n_k, s.degree, m.r + 1) * MB;
+  {
+    op.matrices = assembly;
+    op.factorizing = peak;
+  }
+  return op;
+}
+
+/// The larger of two phases.
+Phase larger(const Phase &a, const Phase &b) { return b.total() > a.total() ? b : a; }
+
+/// `base` with operator `op` added at its factorization (solutions unchanged) or at the
+/// end of its march (`marched`: solutions added).
+Phase with(Phase base, const Operator &op, bool factorizing, double marched = 0)
+{
+  base.matrices += op.matrices;
+  base.solver += factorizing ? op.factorizing : op.solving;
+  base.solutions += factorizing ? 0. : marched;
+  return base;
 }
 } // namespace
 
 MemoryEstimate estimate_memory(const MemoryModel &m)
 {
-  const double t = m.r + 1;
+  const unsigned int t = m.r + 1;
   auto space = [](const SlabSystemSize &s)
   { return bytes_per_dof * s.n_space + 4 * s.nnz_space; };
   auto solutions = [&](const SlabSystemSize &s, double slabs)
-  { return 8 * t * s.n_space * slabs; };
+  { return 8. * t * s.n_space * slabs; };
 
-  Phase primal;
-  primal.matrices = space(m.primal) + space(m.adjoint);
-  primal.solutions = solutions(m.primal, m.n_slabs + m.extra_primal_slabs);
-  add_operator(m.primal, m, primal);
-  Phase peak = primal;
-  if (m.adjoint.n_space > 0)
+  const Operator op_p = slab_operator(m.primal, m, t), op_a = slab_operator(m.adjoint, m, t);
+  const Operator op_hi = m.higher_order ? slab_operator(m.primal, m, t + 1) : Operator();
+  const double U = solutions(m.primal, m.n_slabs + m.extra_primal_slabs),
+               U_hi = solutions(m.primal, m.higher_order_slabs),
+               Z = m.adjoints_stored * solutions(m.adjoint, m.n_slabs);
+  Phase start;
+  start.matrices = space(m.primal) + space(m.adjoint);
+  Phase peak;
+  if (m.concurrent && m.adjoint.n_space > 0)
   {
-    Phase adjoint;
-    adjoint.matrices = space(m.primal) + space(m.adjoint);
-    adjoint.solutions = solutions(m.primal, m.n_slabs) +
-                        m.adjoints_stored * solutions(m.adjoint, m.n_slabs);
-    add_operator(m.adjoint, m, adjoint);
-    if (m.concurrent)
+    Phase primal_done = start;
+    primal_done.solutions = U;
+    // The adjoint (of a higher degree) assembles while the primal factorizes; its
+    // factorization's peak comes while the primal marches
+    Phase assembling = with(start, op_p, true);
+    assembling.matrices += op_a.matrices + op_a.assembly;
+    peak = larger(assembling, with(with(primal_done, op_p, false), op_a, true));
+    if (m.higher_order)
+      peak = larger(peak, with(with(primal_done, op_hi, true), op_a, true));
+    peak = larger(peak, with(with(primal_done, m.higher_order ? op_hi : op_p, false, U_hi),
+                             op_a, false, Z));
+  }
+  else
+  {
+    peak = larger(with(start, op_p, true), with(start, op_p, false, U));
+    Phase done = start;
+    done.solutions = U;
+    if (m.higher_order)
     {
-      adjoint.solutions += solutions(m.primal, m.extra_primal_slabs);
-      add_operator(m.primal, m, adjoint);
+      peak = larger(peak, larger(with(done, op_hi, true), with(done, op_hi, false, U_hi)));
+      done.solutions += U_hi;
     }
-    if (m.concurrent || adjoint.total() > peak.total())
-      peak = adjoint;
+    if (m.adjoint.n_space > 0)
+      peak = larger(peak, larger(with(done, op_a, true), with(done, op_a, false, Z)));
   }
   MemoryEstimate e;
   e.solutions_mb = peak.solutions / MB;
+  e.stored_solutions_mb = (U + U_hi + (m.adjoint.n_space > 0 ? Z : 0.)) / MB;
   e.matrices_mb = peak.matrices / MB;
   e.solver_mb = peak.solver / MB;
   e.total_mb = m.base_mb + startup_mb + peak.total() / MB;
   return e;
+}
+
+void release_free_memory()
+{
+  malloc_trim(0);
 }
 
 double resident_memory_mb()
@@ -174,8 +238,9 @@ MemoryModel memory_model(const Parameters &prm, const SlabSystemSize &primal,
             : 1;
     m.extra_primal_slabs = prm.adaptivity.measure_time_error ? 4 * n_slabs : 0;
     // time_indicator = higher_order keeps the dG(r+1) primal: (r+2)/(r+1) primal slabs each
-    if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)
-      m.extra_primal_slabs += (n_slabs * (r + 2) + r) / (r + 1);
+    m.higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
+    if (m.higher_order)
+      m.higher_order_slabs = (n_slabs * (r + 2) + r) / (r + 1);
   }
   m.base_mb = base_mb;
   return m;

@@ -41,9 +41,13 @@ struct MemoryModel
   unsigned int adjoints_stored = 1;
   /// adaptivity.measure_time_error: the primal on 4 N slabs beside the N-slab solution.
   unsigned int extra_primal_slabs = 0;
+  /// time_indicator = higher_order: the dG(r+1) primal, its own slab operator (marched
+  /// after the primal's) and its solutions, counted in dG(r) slab solutions
+  bool higher_order = false;
+  unsigned int higher_order_slabs = 0;
   double base_mb = 0; ///< resident memory of the process before the run's data
   /// The primal and the adjoint marched at the same time (adaptivity.concurrent_marches):
-  /// one phase with both operators and all slab solutions.
+  /// the primal thread's operators (dG(r), then dG(r+1)) beside the adjoint's.
   bool concurrent = false;
 };
 
@@ -52,17 +56,28 @@ struct MemoryEstimate
   /// base_mb + startup growth + the larger of the primal and the adjoint phase
   double total_mb = 0;
   double solutions_mb = 0; ///< stored slab solutions in the peak phase
+  /// every slab solution stored at the end of the marches (primal, dG(r+1) primal,
+  /// adjoints), whichever phase is the peak
+  double stored_solutions_mb = 0;
   double matrices_mb = 0;  ///< spatial and slab matrices, spaces, in the peak phase
   double solver_mb = 0;    ///< UMFPACK factors or Krylov vectors and preconditioner
 };
 
-/// Peak memory of the run: the primal phase (spaces, the N primal slab solutions, the
-/// primal slab operator) or the adjoint phase (spaces, primal and adjoint solutions,
-/// the adjoint slab operator), whichever is larger, plus base_mb.
+/// Peak memory of the run, base_mb plus the largest of its phases. Each slab operator
+/// holds its matrices and either its factorization's peak (at the start of its march)
+/// or its factors and the solutions marched so far (at the end). One after the other:
+/// the primal, the dG(r+1) primal and the adjoint march, each beside the solutions
+/// before it. Concurrent marches: both factorizations at the start; the dG(r+1)
+/// factorization beside the adjoint's and the primal solutions (measured to overlap);
+/// both operators with all solutions at the end.
 MemoryEstimate estimate_memory(const MemoryModel &m);
 
 /// Resident memory of this process now (VmRSS), MB.
 double resident_memory_mb();
+/// Returns the heap's free pages to the system (glibc's malloc_trim): called between the
+/// phases of a loop, so that the next phase's factorizations (fresh mappings) do not
+/// sit beside freed but resident memory of the last one.
+void release_free_memory();
 /// (physical_memory_mb: slab/slab_operator.h)
 
 /// The memory limit of a run: adaptivity.max_memory_mb, or the physical memory when
