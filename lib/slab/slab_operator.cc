@@ -154,7 +154,7 @@ void SlabOperator<dim>::choose_solver(bool factorization_reused)
                              " MB + 10%, budget " + std::to_string(long(budget)) + " MB";
   if (!use_iterative)
     choice = engine + " (" + memory + ")";
-  else if (1.1 * peak > budget)
+  else if (auto_memory_margin * peak > budget)
     choice = "iterative (" + memory + ")";
   else
     choice = "iterative (a factorization per slab, N_space (r+1)^2 = " +

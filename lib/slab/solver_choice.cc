@@ -36,6 +36,13 @@ struct ModeRecord
   double n = 0, factor = 0, peak = 0;
 };
 std::map<std::pair<unsigned int, bool>, ModeRecord> mode_records; // (degree, complex)
+
+/// fitted_lu_mb's factor part: F bytes per slab unknown and temporal DoF, 25% margin (MB).
+double fitted_factor_mb(double n, unsigned int degree, unsigned int m)
+{
+  const double F = degree > 1 ? 540. : 310.;
+  return 1.25 * n * F * m / (1024. * 1024.);
+}
 } // namespace
 
 double fitted_lu_mb(double n, unsigned int degree, unsigned int m)
@@ -46,9 +53,9 @@ double fitted_lu_mb(double n, unsigned int degree, unsigned int m)
   // DoF; 25% margin. Plus the solver's copy of the matrix (8-byte indices and values,
   // (degree + 2)^2 m entries per row on a uniform mesh), which the measured heap peaks
   // of record_lu include.
-  const double W = 450., F = degree > 1 ? 540. : 310.;
+  const double W = 450.;
   const double copy = 16. * (degree + 2.) * (degree + 2.) * m + 8.;
-  return n * (1.25 * (W + F * m) + copy) / (1024. * 1024.);
+  return n * (1.25 * W + copy) / (1024. * 1024.) + fitted_factor_mb(n, degree, m);
 }
 
 namespace
@@ -76,9 +83,7 @@ double predicted_lu_held_mb(double n, unsigned int degree, unsigned int m)
   const auto record = lu_records.find({degree, m});
   if (record != lu_records.end())
     return extrapolate(record->second.held, record->second.n, n);
-  // the fit's factor part
-  const double F = degree > 1 ? 540. : 310.;
-  return 1.25 * n * F * m / (1024. * 1024.);
+  return fitted_factor_mb(n, degree, m);
 }
 
 void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb, double held_mb)
@@ -116,13 +121,10 @@ bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m
   // UMFPACK factorizes once and back-substitutes per slab (1 s/slab against 4.9 s for
   // the best Krylov solver at 2.1e6 unknowns, even with the factorization amortized over
   // 10 slabs): while the factors fit, it wins.
-  if (1.1 * predicted_lu_mb(n, degree, m) > auto_memory_budget_mb(opt))
+  if (auto_memory_margin * predicted_lu_mb(n, degree, m) > auto_memory_budget_mb(opt))
     return true;
   return !factorization_reused && n * m >= auto_size_threshold(opt, degree);
 }
-
-unsigned int complex_mode_pairs(unsigned int m) { return m / 2; }
-unsigned int real_modes(unsigned int m) { return m % 2; }
 
 std::vector<unsigned int> mode_blocks(unsigned int m)
 {
@@ -147,8 +149,9 @@ ModesMemory predicted_modes_memory(double n_space, unsigned int degree, unsigned
   // complex LU holds 1.8 times the real factors (measured on moving_hump: 1.80 for Q2
   // and Q3) and about the same work space.
   const double fit = fitted_lu_mb(n_space, degree, 1),
-               fit_factor = 1.25 * n_space * (degree > 1 ? 540. : 310.) / (1024. * 1024.);
-  ModeRecord real{n_space, fit_factor, fit}, complex{n_space, 1.8 * fit_factor, fit + 0.8 * fit_factor};
+               fit_factor = fitted_factor_mb(n_space, degree, 1);
+  ModeRecord real{n_space, fit_factor, fit},
+      complex{n_space, 1.8 * fit_factor, fit + 0.8 * fit_factor};
   {
     const std::lock_guard<std::mutex> lock(lu_records_mutex);
     for (const bool is_complex : {false, true})
@@ -190,7 +193,8 @@ bool auto_picks_modes(const SlabSolverOptions &opt, double n_space, unsigned int
                       unsigned int degree, bool factorization_reused)
 {
   return m >= 2 && factorization_reused && opt.direct_solver == DirectEngine::umfpack &&
-         1.1 * predicted_modes_mb(n_space, degree, m) <= auto_memory_budget_mb(opt);
+         auto_memory_margin * predicted_modes_mb(n_space, degree, m) <=
+             auto_memory_budget_mb(opt);
 }
 
 bool solves_by_modes(const SlabSolverOptions &options, double n_space, unsigned int m,

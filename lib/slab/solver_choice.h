@@ -30,6 +30,10 @@ void record_lu(double n, unsigned int degree, unsigned int m, double peak_mb,
                double held_mb);
 void reset_lu_records();
 
+/// solver.type = auto compares the predicted factorization peaks, times this margin, with
+/// its memory budget.
+constexpr double auto_memory_margin = 1.1;
+
 /// The memory a UMFPACK factorization may take under solver.type = auto (MB):
 /// solver.auto_memory_mb, or half the physical memory if that is 0.
 double auto_memory_budget_mb(const SlabSolverOptions &opt);
@@ -43,31 +47,26 @@ double auto_size_threshold(const SlabSolverOptions &opt, unsigned int degree);
 
 /// Which solver solver.type = auto picks (true: iterative) for n slab unknowns with m
 /// temporal DoFs per node, given whether one factorization serves all slabs: iterative
-/// if predicted_lu_mb with a 10% margin exceeds auto_memory_budget_mb, or if each slab needs its own
-/// factorization (time-dependent coefficients, reuse_factorization = false) and
-/// N_space m^2 >= auto_size_threshold; UMFPACK otherwise.
+/// if predicted_lu_mb times auto_memory_margin exceeds auto_memory_budget_mb, or if each
+/// slab needs its own factorization (time-dependent coefficients, reuse_factorization =
+/// false) and N_space m^2 >= auto_size_threshold; UMFPACK otherwise.
 bool auto_picks_iterative(const SlabSolverOptions &opt, double n, unsigned int m,
                           unsigned int degree, bool factorization_reused);
 
-/// The temporal modes of dG(r) with m = r+1 basis functions: the real Schur form of
-/// T2^{-1} T1 has m / 2 complex pairs and, for odd m, one real eigenvalue (the
-/// denominator of the subdiagonal Pade approximant of exp has one real root for odd
-/// degree, none for even; checked against TemporalSchur in the tests).
-unsigned int complex_mode_pairs(unsigned int m);
-unsigned int real_modes(unsigned int m);
-/// The block sizes of that Schur form in the mode solver's order (1: a real mode, 2: a
-/// complex pair), computed once per m.
+/// The blocks of the real Schur form of dG(m-1)'s T2^{-1} T1 in the mode solver's order
+/// (1: a real mode, 2: a complex pair; m / 2 pairs and, for odd m, one real mode),
+/// computed once per m.
 std::vector<unsigned int> mode_blocks(unsigned int m);
 
 /// Predicted memory of the mode solver for N_space = n_space and m temporal modes (MB):
 /// the factors of all modes (held while the slabs are solved) and the peak of the
 /// factorization: each mode's peak beside the factors of those before it, in the order
-/// of the Schur form's blocks (mode_blocks). The
-/// peaks are the measured heap of UMFPACK with the solver's copy of the mode matrix
-/// (solver/umfpack_memory.h), the factors what UMFPACK holds afterwards. Per kind
-/// of mode (real, complex) extrapolated from the last factorization of that kind and
-/// degree in this process (record_modes: the size per unknown allowed to grow like
-/// log n), else from fitted_lu_mb (a complex factor 1.8 real ones, measured).
+/// of the Schur form's blocks (mode_blocks). The peaks are the measured heap of UMFPACK
+/// with the solver's copy of the mode matrix (solver/umfpack_memory.h), the factors what
+/// UMFPACK holds afterwards. Per kind of mode (real, complex) extrapolated from the last
+/// factorization of that kind and degree in this process (record_modes: the size per
+/// unknown allowed to grow like log n), else from fitted_lu_mb (a complex factor 1.8 real
+/// ones, measured).
 struct ModesMemory
 {
   double factors_mb = 0, peak_mb = 0;
@@ -80,7 +79,7 @@ void record_modes(double n_space, unsigned int degree, const ModeLuFigures &f);
 
 /// Whether solver.type = auto picks the mode solver: m = r+1 >= 2, one factorization
 /// serves all slabs (coefficients constant in time, reuse_factorization), the direct
-/// solver is UMFPACK and predicted_modes_mb, with a 10% margin, fits
+/// solver is UMFPACK and predicted_modes_mb times auto_memory_margin fits
 /// auto_memory_budget_mb.
 bool auto_picks_modes(const SlabSolverOptions &opt, double n_space, unsigned int m,
                       unsigned int degree, bool factorization_reused);

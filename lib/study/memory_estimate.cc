@@ -1,10 +1,11 @@
-#include <malloc.h>
 #include "study/memory_estimate.h"
 #include "study/options.h"
 
 #include "base/errors.h"
 #include "base/mpi.h"
 #include "io/table.h"
+
+#include <malloc.h>
 
 #include <algorithm>
 #include <cmath>
