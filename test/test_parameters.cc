@@ -131,7 +131,10 @@ TEST(Parameters, WarnsOfTheUnboundedSupgUnderTheHigherOrderTimeIndicator)
   };
   EXPECT_TRUE(warnings({}).empty());
   EXPECT_TRUE(warnings({"adaptivity.time_indicator=higher_order"}).empty());
-  EXPECT_TRUE(warnings({"discretization.supg_tau_factor=0"}).empty()); // average form
+  EXPECT_TRUE(warnings({"adaptivity.time_indicator=average", "discretization.supg_tau_factor=0"})
+                  .empty());
+  // higher_order is the default
+  EXPECT_EQ(warnings({"discretization.supg_tau_factor=0"}).size(), 1u);
   const auto w = warnings(
       {"adaptivity.time_indicator=higher_order", "discretization.supg_tau_factor=0"});
   ASSERT_EQ(w.size(), 1u);
@@ -148,7 +151,7 @@ TEST(Parameters, DefaultsListEveryChoice)
   Parameters::print_defaults(out);
   EXPECT_NE(out.str().find("Allowed: Any one of average, adjoint_residual, higher_order"),
             std::string::npos);
-  EXPECT_NE(out.str().find("\"time_indicator\": \"average\""), std::string::npos);
+  EXPECT_NE(out.str().find("\"time_indicator\": \"higher_order\""), std::string::npos);
 }
 
 // adaptivity.adjoint_delta0 sets the adjoint's SUPG delta0 (negative: the primal's);

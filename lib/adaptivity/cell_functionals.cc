@@ -7,6 +7,8 @@
 #include "space/weak_form.h"
 #include "time/slab_vector.h"
 
+#include <algorithm>
+
 namespace anisodwr
 {
 using namespace dealii;
@@ -66,6 +68,39 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
     add_temporal_jump_by_matrices(delta, Un, Uprev, rho, supg);
   else
     add_temporal_jump(t0, delta, Un, Uprev, rho, supg);
+}
+
+template <int dim>
+bool CellKernel<dim>::dirichlet_data_functionals(double t0, double tau,
+                                                 const Vector<double> &Un,
+                                                 std::array<SlabFunctional, dim> &data) const
+{
+  if (std::none_of(pieces.begin(), pieces.end(), [](const Piece &pc) { return pc.kind == 2; }))
+    return false;
+  const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell();
+  for (auto &d : data)
+    d.reset(g.size(), nw);
+  Vector<double> &c = scratch[0];
+  c.reinit(np, true);
+  for (const auto &pc : pieces)
+    if (pc.kind == 2)
+      for (unsigned int m = 0; m < g.size(); ++m)
+      {
+        const double t = t0 + g[m] * tau, wt = tau * omega[m];
+        combine(Un, idx, ell[m], 1., c);
+        for (unsigned int q = 0; q < pc.JxW.size(); ++q)
+        {
+          double uh = 0;
+          for (unsigned int l = 0; l < np; ++l)
+            uh += c(l) * pc.u_values(l, q);
+          const double mismatch = scene.boundary_value(pc.x[q], t, pc.id) - uh;
+          const double a = -wt * pc.JxW[q] * scene.epsilon * mismatch;
+          if (a != 0)
+            for (unsigned int l = 0; l < nw; ++l)
+              data[pc.tangential].val[m](l) += a * pc.dn_w(l, q);
+        }
+      }
+  return true;
 }
 
 template <int dim> void CellKernel<dim>::nodal_products(const Vector<double> &Un) const
@@ -240,6 +275,9 @@ template void CellKernel<2>::adjoint_functional(double, double,
                                                 const std::vector<Vector<double>> &,
                                                 const SlabFunction &, bool,
                                                 SlabFunctional &) const;
+template bool CellKernel<2>::dirichlet_data_functionals(double, double,
+                                                       const Vector<double> &,
+                                                       std::array<SlabFunctional, 2> &) const;
 template void CellKernel<2>::goal_functional(double, const Vector<double> &,
                                              SlabFunctional &) const;
 } // namespace anisodwr

@@ -19,9 +19,9 @@ CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
       fv_w(primal.mapping(), fe_w, quad,
            update_values | update_gradients | update_hessians),
       ff_p(primal.mapping(), fe_p, fquad,
-           update_gradients | update_normal_vectors | update_quadrature_points |
+           update_values | update_gradients | update_normal_vectors | update_quadrature_points |
                update_JxW_values),
-      ff_w(primal.mapping(), fe_w, fquad, update_values),
+      ff_w(primal.mapping(), fe_w, fquad, update_values | update_gradients),
       fs_p(primal.mapping(), fe_p, fquad,
            update_gradients | update_normal_vectors | update_quadrature_points |
                update_JxW_values),
@@ -95,6 +95,7 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
       const auto id = cell->face(f)->boundary_id();
       add_piece(ff_p, ff_w, nullptr, {}, scene.neumann_ids.count(id) ? 1 : 2);
       pieces.back().id = id;
+      pieces.back().tangential = dim == 2 ? 1 - f / 2 : 0;
     }
     else if (cell->face(f)->has_children())
     {
@@ -149,6 +150,11 @@ void CellKernel<dim>::add_piece(const FEFaceValuesBase<dim> &fp,
   pc.kind = kind;
   pc.nb_dofs = std::move(nb);
   pc.w.reinit(nw, nq);
+  if (kind == 2)
+  {
+    pc.dn_w.reinit(nw, nq);
+    pc.u_values.reinit(np, nq);
+  }
   // the normal derivatives of u (ours and the neighbour's) at the piece's points
   FullMatrix<double> gradn(np, nq), nb_gradn(fn ? np : 0, nq);
   for (unsigned int q = 0; q < nq; ++q)
@@ -160,6 +166,13 @@ void CellKernel<dim>::add_piece(const FEFaceValuesBase<dim> &fp,
       pc.w(l, q) = fw.shape_value(l, q);
     for (unsigned int l = 0; l < np; ++l)
       gradn(l, q) = fp.shape_grad(l, q) * fp.normal_vector(q);
+    if (kind == 2)
+    {
+      for (unsigned int l = 0; l < nw; ++l)
+        pc.dn_w(l, q) = fw.shape_grad(l, q) * fp.normal_vector(q);
+      for (unsigned int l = 0; l < np; ++l)
+        pc.u_values(l, q) = fp.shape_value(l, q);
+    }
     if (fn) // match the neighbour's quadrature point to ours
     {
       unsigned int qn = 0;

@@ -80,6 +80,15 @@ public:
                           const std::vector<dealii::Vector<double>> &nodal,
                           const SlabFunction &zt, bool supg, SlabFunctional &A) const;
 
+  /// The Dirichlet data's share of the error, -int_I int_{Gamma_D} eps (g - u) d_n z ds
+  /// dt (the term the error identity gains where u_h interpolates g instead of taking
+  /// it: doc/method.md §6), as functionals of the weight z on the slab, one per
+  /// direction: a boundary face's share goes to its tangential direction, the one
+  /// whose refinement resolves g along the face. False (data untouched) on cells
+  /// without Dirichlet faces.
+  bool dirichlet_data_functionals(double t0, double tau, const dealii::Vector<double> &Un,
+                                  std::array<SlabFunctional, dim> &data) const;
+
   /// J'(v) on this cell: the part over I at the Gauss points, the end part at T.
   void goal_functional(double tau, const dealii::Vector<double> &jt,
                        SlabFunctional &J) const;
@@ -91,6 +100,10 @@ private:
     dealii::types::boundary_id id = 0; ///< the boundary id (kinds 1 and 2)
     std::vector<double> JxW;
     dealii::FullMatrix<double> w; ///< W's shape values at the points (Neumann data)
+    /// Dirichlet pieces: W's normal derivatives and u's shape values at the points, and
+    /// the face's tangential direction on the reference cell
+    dealii::FullMatrix<double> dn_w, u_values;
+    unsigned int tangential = 0;
     std::vector<dealii::Point<dim>> x;
     std::vector<dealii::Tensor<1, dim>> normal;
     std::vector<dealii::types::global_dof_index> nb_dofs;

@@ -94,6 +94,7 @@ private:
   Vector<double> e_prev;
   std::vector<types::global_dof_index> idx_q;
   SlabFunctional rho, supg, A_rh, S_rh, A_z, Jf;
+  std::array<SlabFunctional, dim> data; // the Dirichlet data's share, per direction
   std::vector<Vector<double>> zk, uk, vk;
   /// z's nodal vectors of slab n+1 (gathered for z(t_n^+), reused by slab n+1) and
   /// each direction's I_2h,i u - u at the last node of slab n (v(t_n^-) of slab n+1)
@@ -219,6 +220,15 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   }
   difference(z, Rhz, dz);
   ind.eta_h_split_rest += split - apply(rho, dz, false);
+  // the Dirichlet data's share, weighted by z itself (u_h interpolates g on Gamma_D)
+  if (kernel.dirichlet_data_functionals(t0, tau, U[n], data))
+    for (unsigned int i = 0; i < dim; ++i)
+    {
+      const double eta = apply(data[i], z, false);
+      cells.eta_h_cell[c][i] += eta;
+      ind.eta_h[i] += eta;
+      ind.eta_h_data += eta;
+    }
 
   reconstruction_errors(tau);
   // J_T(E u - u) at T: 0 for the Radau reconstruction (E u - u vanishes at t_n)
@@ -422,7 +432,7 @@ void allreduce_chunks(std::vector<Indicators<dim>> &sums, Indicators<dim> &ind)
       for (auto &e : s.eta_h)
         visit(e);
       for (double *e : {&s.eta_tau, &s.eta_tau_rho, &s.eta_tau_rhostar, &s.eta_h_rho,
-                        &s.eta_h_rhostar, &s.eta_h_supg, &s.eta_h_split_rest})
+                        &s.eta_h_rhostar, &s.eta_h_supg, &s.eta_h_split_rest, &s.eta_h_data})
         visit(*e);
       double no_lift = s.no_lift;
       visit(no_lift);
@@ -566,6 +576,7 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
     ind.eta_h_rhostar += s.eta_h_rhostar;
     ind.eta_h_supg += s.eta_h_supg;
     ind.eta_h_split_rest += s.eta_h_split_rest;
+    ind.eta_h_data += s.eta_h_data;
     ind.no_lift += s.no_lift;
   }
   return ind;

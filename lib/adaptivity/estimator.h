@@ -61,6 +61,9 @@ template <int dim> struct Indicators
   /// sum_i rho(u)(z - R_i z) - rho(u)(z - R_h z) (= rho(u)((I - R_1)(I - R_2) z) in 2D),
   /// the mixed-direction remainder that doc/method.md §6 does not keep
   double eta_h_split_rest = 0;
+  /// the Dirichlet data's share of eta_h, -int_I int_{Gamma_D} eps (g - u) d_n z
+  /// (included in eta_h; zero where u_h takes g exactly)
+  double eta_h_data = 0;
   /// (cell, direction) pairs without a directional lift (no adjoint half there)
   unsigned int no_lift = 0;
   double eta_h_total() const
@@ -101,6 +104,7 @@ void add_scaled(Indicators<dim> &sum, double w, const Indicators<dim> &x)
   sum.eta_h_rhostar += w * x.eta_h_rhostar;
   sum.eta_h_supg += w * x.eta_h_supg;
   sum.eta_h_split_rest += w * x.eta_h_split_rest;
+  sum.eta_h_data += w * x.eta_h_data;
   sum.no_lift = x.no_lift;
 }
 

@@ -425,21 +425,29 @@ std::vector<Entry> adaptivity_entries()
        "adaptivity.marking_criterion whether of their count or of the indicators' "
        "sum), in [0,1].",
        "a fraction in [0, 1]", Check::fraction},
-      {"adaptivity", "theta_tau", "0.2", m(&S::theta_tau), real(0.),
-       "Fraction of slabs bisected (largest |eta_tau^n|), in [0,1]; 0 keeps the time "
-       "mesh.",
+      {"adaptivity", "theta_tau", "1", m(&S::theta_tau), real(0.),
+       "Fraction of slabs bisected (largest |eta_tau^n|) in a loop that refines time "
+       "(adaptivity.time_balance), in [0,1]; 0 keeps the time mesh. Default 1: a moving "
+       "feature needs every slab refined, and time_balance already keeps time "
+       "refinement to the loops where eta_tau is not small.",
        "a fraction in [0, 1]", Check::fraction},
-      {"adaptivity", "time_balance", "0", m(&S::time_balance), real(0.),
-       "Bisect slabs (theta_tau) only in loops whose temporal estimate is not small "
-       "against the spatial one: |eta_tau| >= time_balance (|eta_h,x| + |eta_h,y|), the "
-       "combined goal's signed parts; 0: in every loop. The spatial mesh is refined in "
-       "every loop."},
+      {"adaptivity", "time_balance", "0.5", m(&S::time_balance), real(0.),
+       "Balance of time and space refinement, b: a loop bisects slabs (theta_tau) if "
+       "|eta_tau| >= b (|eta_h,x| + |eta_h,y|) and refines cells if |eta_h,x| + "
+       "|eta_h,y| >= b |eta_tau| (or if it bisects no slab), with the shares of eta_abs "
+       "(per goal, weighted by |w_i|, where each goal has its own estimate). So time is "
+       "refined where eta_tau dominates, space where eta_h does, both where they are "
+       "within a factor 1/b; 0: both in every loop."},
       {"adaptivity", "theta_coarsen", "0", m(&S::theta_coarsen), real(0.),
        "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1].",
        "a fraction in [0, 1]", Check::fraction},
       {"adaptivity", "tolerance", "0", m(&S::tolerance), real(0.),
        "Stop when the estimate named by adaptivity.tolerance_measure is below tolerance "
-       "(0: no tolerance)."},
+       "(0: no tolerance). It bounds the error of the combined goal J_w = sum_i w_i J_i "
+       "within the effectivity band (doc/results.md, 'Error control without tuning'): "
+       "absolute in J_w's units for numeric goal.weights, relative for goal.weights = "
+       "estimate or auto (w_i = +-1/|J_i(u_h)|: the sum over the goals of their "
+       "relative errors)."},
       {"adaptivity", "tolerance_measure", "parts", m(&S::tolerance_measure), by_name,
        "What adaptivity.tolerance bounds. eta: |eta_tau_h|, the signed sum of all "
        "indicators; parts: |eta_h,x| + |eta_h,y| + |eta_tau| without signs, and with one "
@@ -459,7 +467,7 @@ std::vector<Entry> adaptivity_entries()
       {"adaptivity", "max_wall_time", "0", m(&S::max_wall_time), real(0.),
        "Wall-time budget in seconds (0: none): no new loop starts when the time so far "
        "plus twice the last loop's time would exceed it."},
-      {"adaptivity", "time_indicator", "average", m(&S::time_indicator), by_name,
+      {"adaptivity", "time_indicator", "higher_order", m(&S::time_indicator), by_name,
        "Form of eta_tau. average: 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u); "
        "adjoint_residual: rho*(u,z)(E u - u), exact up to the reconstruction of the "
        "primal alone; use it when the adjoint is not resolved in time (point goals at T "
@@ -492,11 +500,13 @@ std::vector<Entry> adaptivity_entries()
        "err_time_<goal> per goal); costs 7 primal solves per slab."},
       {"adaptivity", "adjoint_degree", "0", m(&S::adjoint_degree), integer(0, 8),
        "Polynomial degree q of the adjoint; 0 means q = 2p."},
-      {"adaptivity", "space_indicator", "average", m(&S::space_indicator), by_name,
+      {"adaptivity", "space_indicator", "primal_residual", m(&S::space_indicator), by_name,
        "Form of eta_h,i. average: 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - "
        "u) + SUPG terms (doc/method.md §8; where a cell has no directional lift only the primal "
        "half); primal_residual: rho(u)(z - R_i z) + S(u)(R_h z), the primal residual "
-       "alone, which needs no lift of u."},
+       "alone, which needs no lift of u (the default: doc/results.md, 'Error control "
+       "without tuning'). Both carry the Dirichlet data's share -int eps (g - u_h) d_n z "
+       "on Gamma_D (loops.csv eta_h_data)."},
       {"adaptivity", "adjoint_stabilization", "transposed", m(&S::adjoint_stabilization),
        by_name,
        "transposed: the adjoint is the transpose of the SUPG-stabilized primal operator "

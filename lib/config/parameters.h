@@ -104,20 +104,21 @@ using GoalSection = GoalInput;
 struct AdaptivitySection : MarkingOptions
 {
   unsigned int loops = 6;
-  double theta_tau = 0.2;
-  /// bisect slabs only in loops with |eta_tau| >= time_balance (|eta_h,x| + |eta_h,y|)
-  double time_balance = 0.;
+  double theta_tau = 1.;
+  /// refine time where |eta_tau| >= time_balance |eta_h|, space where |eta_h| >=
+  /// time_balance |eta_tau| (study/dwr.cc, balance)
+  double time_balance = 0.5;
   double tolerance = 0.;
   ToleranceMeasure tolerance_measure = ToleranceMeasure::parts;
   double max_dofs = 0.;
   double max_memory_mb = 0.;
   double max_wall_time = 0.; ///< s; 0: no budget
-  TimeIndicator time_indicator = TimeIndicator::average;
+  TimeIndicator time_indicator = TimeIndicator::higher_order;
   bool per_goal_estimates = false;
   bool measure_time_error = false;
   bool concurrent_marches = true;
   unsigned int adjoint_degree = 0;
-  SpaceIndicator space_indicator = SpaceIndicator::average;
+  SpaceIndicator space_indicator = SpaceIndicator::primal_residual;
   AdjointStabilization adjoint_stabilization = AdjointStabilization::transposed;
   double adjoint_delta0 = -1.; ///< < 0: discretization.delta0
 };

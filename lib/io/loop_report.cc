@@ -65,19 +65,40 @@ std::vector<double> LoopRow::all_values() const
             double(marking[1]), double(marking[2]), double(marking[3]),
             double(marking[4]), mem_estimate, eta_h_rho, eta_h_rhostar, eta_h_supg,
             no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest,
-            eta_parts_abs(), hanging_gap});
+            eta_parts_abs(), hanging_gap, eta_h_data});
   return v;
 }
 
 double LoopRow::eta_parts_abs() const
 {
-  if (eta_goal_parts.empty() || eta_goal_parts.size() != weights.size())
-    return std::abs(eta_h[0]) + std::abs(eta_h[1]) + std::abs(eta_tau);
+  return eta_space_abs() + eta_time_abs();
+}
+
+namespace
+{
+/// sum of |w_i part| over the goals' parts [first, last) (or the weighted goal's)
+double abs_parts(const LoopRow &row, unsigned int first, unsigned int last)
+{
+  const std::array<double, 3> own{{row.eta_h[0], row.eta_h[1], row.eta_tau}};
+  const bool per_goal =
+      !row.eta_goal_parts.empty() && row.eta_goal_parts.size() == row.weights.size();
   double sum = 0;
-  for (std::size_t g = 0; g < weights.size(); ++g)
-    for (const double part : eta_goal_parts[g])
-      sum += std::abs(weights[g] * part);
+  for (std::size_t g = 0; g < (per_goal ? row.weights.size() : 1); ++g)
+    for (unsigned int part = first; part < last; ++part)
+      sum += per_goal ? std::abs(row.weights[g] * row.eta_goal_parts[g][part])
+                      : std::abs(own[part]);
   return sum;
+}
+} // namespace
+
+double LoopRow::eta_space_abs() const
+{
+  return abs_parts(*this, 0, 2);
+}
+
+double LoopRow::eta_time_abs() const
+{
+  return abs_parts(*this, 2, 3);
 }
 
 /// Columns after `columns` in loops.csv: the signed error J_i(u) - J_i(u_tau h) of each
@@ -93,7 +114,8 @@ double LoopRow::eta_parts_abs() const
 /// directions), the number of (cell, direction) pairs without a lift and the UMFPACK
 /// factor sizes of the primal and adjoint slab matrices (MB), whether the primal and
 /// the adjoint marched concurrently (1/0), the remainder of the directional split and
-/// LoopRow::eta_parts_abs(), and the mesh's hanging-node mismatch (max_hanging_gap).
+/// LoopRow::eta_parts_abs(), the mesh's hanging-node mismatch (max_hanging_gap) and the
+/// Dirichlet data's share of eta_h (Indicators::eta_h_data).
 std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names)
 {
   auto c = columns;
@@ -106,7 +128,7 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
             "marked_x", "marked_y", "marked_xy", "closure", "memory_estimate_mb",
             "eta_h_rho", "eta_h_rhostar", "eta_h_supg", "no_lift", "lu_primal_mb",
             "lu_adjoint_mb", "concurrent", "eta_h_split_rest", "eta_abs",
-            "hanging_gap"});
+            "hanging_gap", "eta_h_data"});
   return c;
 }
 

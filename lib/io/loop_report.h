@@ -31,6 +31,7 @@ struct LoopRow
   /// S(u)(R_h z)) and the (cell, direction) pairs without a lift
   double eta_h_rho = 0, eta_h_rhostar = 0, eta_h_supg = 0, no_lift = 0;
   double eta_h_split_rest = 0; ///< Indicators::eta_h_split_rest
+  double eta_h_data = 0;       ///< Indicators::eta_h_data
   /// max_hanging_gap of the loop's mesh (adaptivity/refinement.h)
   double hanging_gap = 0;
   /// adaptivity.measure_time_error: J_w(u_h) - J_w(u_tau h) on this spatial mesh,
@@ -62,6 +63,10 @@ struct LoopRow
   /// every goal has its own parts (eta_goal_parts), else of the weighted goal. Never
   /// below |eta_tau h| (eta_tau h = sum_i w_i eta_i); loops.csv column eta_abs.
   double eta_parts_abs() const;
+  /// The spatial and the temporal share of eta_parts_abs(): |eta_h,x| + |eta_h,y| and
+  /// |eta_tau|, per goal weighted by |w_i| when every goal has its own parts.
+  double eta_space_abs() const;
+  double eta_time_abs() const;
   /// The first 18 columns of loop_columns.
   std::vector<double> values() const;
   /// values() followed by the columns loop_columns adds for the goals

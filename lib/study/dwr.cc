@@ -138,6 +138,24 @@ private:
   Timer wall;
 };
 
+/// What a loop refines (adaptivity.time_balance): the slabs where the temporal share of
+/// the estimate is not small against the spatial one, |eta_tau| >= b (|eta_h,x| +
+/// |eta_h,y|), and the cells where the spatial share is not small against the temporal
+/// one, |eta_h,x| + |eta_h,y| >= b |eta_tau| (or where no slab is bisected: theta_tau =
+/// 0). The shares are those of eta_abs (per goal, weighted by |w_i|, where each goal has
+/// its own estimate). b = 0: both in every loop; every loop refines one or both.
+struct Balance
+{
+  bool space, time;
+};
+
+Balance balance(const LoopRow &row, const AdaptivitySection &a)
+{
+  const double space = row.eta_space_abs(), time = row.eta_time_abs();
+  const bool time_refined = a.theta_tau > 0 && time >= a.time_balance * space;
+  return {!time_refined || space >= a.time_balance * time, time_refined};
+}
+
 /// The scene of the run, with the output directory created first.
 std::unique_ptr<Scene<2>> scene_in_directory(const Parameters &prm)
 {
@@ -199,11 +217,14 @@ void AdaptiveLoop::run()
       if (!stop)
       {
         Timer t;
-        const MarkingStats m = mark_cells(tria, ind, marking);
-        row.marking = {{m.marked, m.cut_x, m.cut_y, m.cut_both, m.closure}};
-        tria.execute_coarsening_and_refinement();
-        if (std::abs(row.eta_tau) >=
-            prm.adaptivity.time_balance * (std::abs(row.eta_h[0]) + std::abs(row.eta_h[1])))
+        const Balance refine = balance(row, prm.adaptivity);
+        if (refine.space)
+        {
+          const MarkingStats m = mark_cells(tria, ind, marking);
+          row.marking = {{m.marked, m.cut_x, m.cut_y, m.cut_both, m.closure}};
+          tria.execute_coarsening_and_refinement();
+        }
+        if (refine.time)
           mesh = refine_time(mesh, ind.eta_tau_slab, prm.adaptivity.theta_tau);
         row.t_refine = t.wall_time();
       }
