@@ -82,12 +82,12 @@ bool CellKernel<dim>::dirichlet_data_functionals(double t0, double tau,
     d.reset(g.size(), nw);
   Vector<double> &c = scratch[0];
   c.reinit(np, true);
-  for (const auto &pc : pieces)
-    if (pc.kind == 2)
-      for (unsigned int m = 0; m < g.size(); ++m)
-      {
-        const double t = t0 + g[m] * tau, wt = tau * omega[m];
-        combine(Un, idx, ell[m], 1., c);
+  for (unsigned int m = 0; m < g.size(); ++m)
+  {
+    const double t = t0 + g[m] * tau, wt = tau * omega[m];
+    combine(Un, idx, ell[m], 1., c); // u at the Gauss point, once for all faces
+    for (const auto &pc : pieces)
+      if (pc.kind == 2)
         for (unsigned int q = 0; q < pc.JxW.size(); ++q)
         {
           double uh = 0;
@@ -99,7 +99,7 @@ bool CellKernel<dim>::dirichlet_data_functionals(double t0, double tau,
             for (unsigned int l = 0; l < nw; ++l)
               data[pc.tangential].val[m](l) += a * pc.dn_w(l, q);
         }
-      }
+  }
   return true;
 }
 
