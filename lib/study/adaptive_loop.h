@@ -1,0 +1,135 @@
+#pragma once
+// The adaptive DWR loop of run_dwr (study/dwr.h), internal to lib/study/: the class that
+// sequences the loops. Its parts by job:
+//   dwr.cc          the loop: solves, estimate, refinement (time and space balanced),
+//                   stop, tables
+//   dwr_adjoint.cc  goals, weights, the adjoint march(es), the estimate from them, the
+//                   slab solver options and the loop's memory check
+#include "adaptivity/estimator.h"
+#include "adaptivity/refinement.h"
+#include "config/parameters.h"
+#include "goal/goal.h"
+#include "io/loop_report.h"
+#include "io/table.h"
+#include "slab/primal_march.h"
+#include "slab/slab_operator.h"
+#include "study/memory_estimate.h"
+#include "study/probes.h"
+
+#include <deal.II/base/timer.h>
+#include <deal.II/grid/tria.h>
+
+#include <future>
+#include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace anisodwr::dwr_loop
+{
+using namespace dealii;
+
+constexpr double dwr_nan = std::numeric_limits<double>::quiet_NaN();
+
+/// The adjoint march of a loop: its slab operator, the adjoint slab solutions (one set
+/// per goal with goal.weights = estimate or per_goal_estimates, else one for the
+/// weighted goal) and its wall time.
+struct AdjointMarch
+{
+  std::unique_ptr<SlabOperator<2>> op;
+  std::vector<std::vector<Vector<double>>> Z;
+  double wall = 0;
+};
+
+/// The adaptive loop of run_dwr: the scene, goals and meshes, the tables, and per loop
+/// the solves, the estimate, the outputs and the refinement.
+class AdaptiveLoop
+{
+public:
+  explicit AdaptiveLoop(const Parameters &prm);
+  void run();
+
+private:
+  /// The loop's solves, goal values and indicators on the current meshes (ind), and its
+  /// outputs (probes, cut lines, VTU). False if the DoF budget stops the run first.
+  bool solve_and_estimate(LoopRow &row, Indicators<2> &ind);
+  /// The slab solver options, with the dump of the first slab matrix to
+  /// slab-<problem>-loop-NNNN.mtx in loop output.dump_slab_loop; UMFPACK (no auto
+  /// choice inside a march thread) when the marches are concurrent.
+  SlabSolverOptions march_solver_options(unsigned int loop, const std::string &problem,
+                                         bool concurrent) const;
+  /// The loop's memory estimate, checked against the limit (ResourceLimitError).
+  /// Returns whether the primal and the adjoint march concurrently
+  /// (adaptivity.concurrent_marches: see its documentation for the conditions).
+  bool check_loop_memory(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint);
+  /// The adjoint(s) of the loop: independent of the primal unless goal.weights = auto
+  /// with one adjoint for the weighted goal. Then `weights` is valid: the last slab's
+  /// operator is assembled and factorized first, and the march waits for weights (true
+  /// once evaluate_goals has set the goals' weights, false if the primal failed).
+  AdjointMarch march_adjoints(unsigned int loop, const Space<2> &adjoint,
+                              const std::vector<GoalSpec> &goal_specs,
+                              const MarchOptions &opt, bool concurrent,
+                              std::shared_future<bool> weights = {}) const;
+  /// J_i(u_tau h), the weights (auto: from the patch lift) and the weighted J (not yet
+  /// for goal.weights = estimate).
+  void evaluate_goals(LoopRow &row, const Space<2> &primal,
+                      const std::vector<Vector<double>> &U);
+  /// The weights of the goals into row, and the weighted J and J_exact.
+  void weigh_goals(LoopRow &row) const;
+  /// The indicators ind of the weighted goal from the adjoint march: one adjoint for
+  /// J_w = sum_i w_i J_i, or (by_goal) one per goal and ind = sum_i w_i ind_i, with
+  /// goal.weights = estimate w_i = sign(eta_i) / max(|J_i(u_h)|, 1e-12). Sets t_adjoint,
+  /// t_estimate.
+  void estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
+                     const Space<2> &adjoint, const std::vector<Vector<double>> &U,
+                     const HigherOrderPrimal *hi, AdjointMarch adj);
+  /// The indicators of one goal alone (weight 1) from its adjoint Z.
+  Indicators<2> goal_estimate(const Space<2> &primal, const Space<2> &adjoint,
+                              const std::vector<Vector<double>> &U,
+                              const std::vector<Vector<double>> &Z, const GoalSpec &goal,
+                              const HigherOrderPrimal *hi) const;
+  /// by_goal: see estimate_from.
+  void estimate_by_goal(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
+                        const Space<2> &adjoint, std::vector<std::vector<Vector<double>>> Z,
+                        const std::vector<Vector<double>> &U, const HigherOrderPrimal *hi);
+  /// True if the run ends after this loop (stop_reason says why).
+  bool stop_after(const LoopRow &row);
+  /// Tables, summary and console line of a finished loop.
+  void record(const LoopRow &row);
+  void summary(const std::string &status, const std::string &reason, double wall_time,
+               const std::string &details = "");
+
+  const Parameters &prm;
+  const std::unique_ptr<Scene<2>> scene;
+  std::vector<GoalSpec> goals;
+  const bool auto_weights, estimate_weights;
+  /// one adjoint and one estimate per goal, the combined indicators their weighted sum
+  /// (goal.weights = estimate or adaptivity.per_goal_estimates)
+  const bool by_goal;
+  /// "exact" (the scene's exact solution), "goal.reference" or "none": where J_exact,
+  /// and with it the error columns and I_eff, come from
+  const std::string error_reference;
+  const bool has_exact; ///< error_reference != "none"
+  std::vector<double> J_exact;
+  MarkingOptions marking;
+  Triangulation<2> tria;
+  TimeMesh mesh;
+  const TemporalBasis basis;
+  const unsigned int q;
+  std::unique_ptr<CsvTable> table, probe_table;
+  ProbeSpec<2> probe_spec;
+  std::vector<LoopRow> rows;
+  std::vector<std::pair<double, std::string>> vtu_records;
+  std::string stop_reason = "max loops";
+  /// solver.type = auto: the last solver kind printed per problem (primal, adjoint)
+  int solver_kind_before[2] = {-1, -1}; ///< 0 coupled direct, 1 iterative, 2 modes
+  void report_auto_choice(unsigned int loop, unsigned int problem, const SlabOperator<2> &op);
+  /// the memory estimate: the process before the loops' data, the limit, and the last
+  /// loop's measured/estimated peak (>= 1) that scales the next estimate
+  double base_mb = 0;
+  MemoryLimit mem_limit;
+  double mem_ratio = 1.;
+  Timer wall;
+};
+} // namespace anisodwr::dwr_loop

@@ -1,0 +1,211 @@
+#include "study/adaptive_loop.h"
+#include "study/loop_outputs.h"
+#include "study/options.h"
+#include "study/time_error.h"
+
+#include "adaptivity/lifted_goal.h"
+#include "base/mpi.h"
+#include "slab/adjoint_march.h"
+
+#include <deal.II/base/multithread_info.h>
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace anisodwr::dwr_loop
+{
+SlabSolverOptions AdaptiveLoop::march_solver_options(unsigned int loop,
+                                                     const std::string &problem,
+                                                     bool concurrent) const
+{
+  SlabSolverOptions o = slab_solver_options(prm);
+  if (concurrent)
+  {
+    // no Krylov solves in two threads: auto stays with a direct solver (modes or the
+    // coupled UMFPACK)
+    o.direct_only = true;
+    if (o.type == SolverType::iterative)
+      o.type = SolverType::direct;
+  }
+  if (loop > 0 && loop == prm.output.dump_slab_loop)
+  {
+    std::ostringstream name;
+    name << prm.output.directory << "/slab-" << problem << "-loop-" << std::setw(4)
+         << std::setfill('0') << loop << ".mtx";
+    o.dump_matrix = name.str();
+  }
+  return o;
+}
+
+AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adjoint,
+                                          const std::vector<GoalSpec> &goal_specs,
+                                          const MarchOptions &opt, bool concurrent,
+                                          std::shared_future<bool> weights) const
+{
+  // One adjoint per goal: all adjoints first (one factorization serves them), then the
+  // estimates without the adjoint's factors in memory
+  Timer t;
+  AdjointMarch a;
+  a.op = std::make_unique<SlabOperator<2>>(adjoint, basis,
+                                           march_solver_options(loop, "adjoint", concurrent));
+  double waited = 0;
+  if (weights.valid())
+  {
+    const unsigned int last = mesh.n_slabs() - 1;
+    guarded_slab_solve(
+        opt, "adjoint", last, mesh, [&]() { a.op->prepare(mesh.start(last), mesh.tau(last)); },
+        Vector<double>());
+    Timer w;
+    if (!weights.get())
+      return a;
+    waited = w.wall_time();
+  }
+  // (with weights: the goals' weights as evaluate_goals set them)
+  const std::vector<GoalSpec> &specs = weights.valid() ? goals : goal_specs;
+  if (by_goal)
+  {
+    // each goal alone (weight 1), their solves side by side
+    std::vector<GoalVectors> unit;
+    for (const auto &goal : specs)
+      unit.push_back(assemble_goal_vectors(adjoint, {unweighted(goal)}));
+    a.Z = anisodwr::march_adjoints(adjoint, mesh, basis, *a.op, unit, opt);
+  }
+  else
+    a.Z.push_back(
+        march_adjoint(adjoint, mesh, basis, *a.op, assemble_goal_vectors(adjoint, specs), opt));
+  a.wall = t.wall_time() - waited;
+  return a;
+}
+
+void AdaptiveLoop::estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
+                                 const Space<2> &adjoint,
+                                 const std::vector<Vector<double>> &U,
+                                 const HigherOrderPrimal *hi, AdjointMarch adj)
+{
+  row.t_adjoint = adj.wall;
+  report_auto_choice(row.loop, 1, *adj.op);
+  row.lu_adjoint_mb = adj.op->timings().factor_mb;
+  // The estimator solves no slab system: the adjoint's factors and matrices go before
+  // it runs.
+  adj.op.reset();
+  release_free_memory();
+  if (by_goal)
+  {
+    estimate_by_goal(row, ind, primal, adjoint, std::move(adj.Z), U, hi);
+    return;
+  }
+  Timer t;
+  ind = estimate(primal, adjoint, mesh, basis, U, adj.Z[0], goals,
+                 prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator);
+  row.t_estimate = t.wall_time();
+}
+
+void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
+                                    const Space<2> &primal, const Space<2> &adjoint,
+                                    std::vector<std::vector<Vector<double>>> Z,
+                                    const std::vector<Vector<double>> &U,
+                                    const HigherOrderPrimal *hi)
+{
+  Timer t;
+  ind = Indicators<2>();
+  for (std::size_t i = 0; i < goals.size(); ++i)
+  {
+    const auto part = goal_estimate(primal, adjoint, U, Z[i], goals[i], hi);
+    Z[i] = {};
+    add_goal_estimate(row, part);
+    if (estimate_weights)
+      goals[i].weight = signed_goal_weight(row.eta_goal[i], row.J_goal[i]);
+    add_scaled(ind, goals[i].weight, part);
+  }
+  if (estimate_weights)
+    weigh_goals(row);
+  row.t_estimate = t.wall_time();
+}
+
+Indicators<2> AdaptiveLoop::goal_estimate(const Space<2> &primal, const Space<2> &adjoint,
+                                          const std::vector<Vector<double>> &U,
+                                          const std::vector<Vector<double>> &Z,
+                                          const GoalSpec &goal,
+                                          const HigherOrderPrimal *hi) const
+{
+  return estimate(primal, adjoint, mesh, basis, U, Z, {unweighted(goal)},
+                  prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator);
+}
+
+void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
+                                      const SlabOperator<2> &op)
+{
+  // printed when the solver changes, so that the table stays readable
+  const int kind = op.iterative() ? 1 : op.modes() ? 2 : 0;
+  if (op.auto_choice().empty() || kind == solver_kind_before[problem])
+    return;
+  solver_kind_before[problem] = kind;
+  std::cout << "  loop " << loop << (problem ? " adjoint" : " primal")
+            << ", solver.type = auto: " << op.auto_choice() << "\n";
+}
+
+bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
+                                     const Space<2> &adjoint)
+{
+  MemoryModel model = memory_model(prm, primal, &adjoint, row.n_t, base_mb,
+                                   static_cast<unsigned int>(goals.size()));
+  const SlabSolverOptions options = slab_solver_options(prm);
+  const bool higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
+  model.concurrent =
+      prm.adaptivity.concurrent_marches &&
+      mpi_ranks() == 1 &&
+      MultithreadInfo::n_threads() > 1 && options.direct_solver == DirectEngine::umfpack &&
+      !model.primal.iterative && !model.adjoint.iterative &&
+      !(higher_order && solves_iteratively(options, primal.n_dofs(), prm.discretization.r + 2,
+                                           primal.degree(),
+                                           options.reuse_factorization &&
+                                               !model.time_dependent));
+  row.mem_estimate = estimate_memory(model).total_mb;
+  if (model.concurrent && row.mem_estimate * mem_ratio > mem_limit.mb)
+  {
+    // both factorizations at once do not fit: one after the other
+    model.concurrent = false;
+    row.mem_estimate = estimate_memory(model).total_mb;
+  }
+  check_memory(
+      "loop " + std::to_string(row.loop), row.mem_estimate * mem_ratio, mem_limit, model,
+      mem_ratio > 1. ? " (the model's " + json_number(std::round(row.mem_estimate), 10) +
+                           " MB times " + json_number(mem_ratio, 3) + ", loop " +
+                           std::to_string(row.loop - 1) + "'s measured/estimated peak)"
+                     : "");
+  return model.concurrent;
+}
+
+void AdaptiveLoop::evaluate_goals(LoopRow &row, const Space<2> &primal,
+                                  const std::vector<Vector<double>> &U)
+{
+  for (std::size_t g = 0; g < goals.size(); ++g)
+  {
+    row.J_goal.push_back(goal_value(primal, goals[g], mesh, basis, U));
+    row.J_goal_exact.push_back(J_exact[g]);
+    if (auto_weights)
+    {
+      const double d = lift_difference(primal, goals[g], mesh, basis, U);
+      row.lift_difference.push_back(d);
+      goals[g].weight = signed_goal_weight(d, row.J_goal[g], auto_weight_unseen);
+    }
+  }
+  if (!estimate_weights)
+    weigh_goals(row);
+}
+
+void AdaptiveLoop::weigh_goals(LoopRow &row) const
+{
+  row.weights.clear();
+  row.J = 0;
+  for (std::size_t g = 0; g < goals.size(); ++g)
+  {
+    row.weights.push_back(goals[g].weight);
+    row.J += goals[g].weight * row.J_goal[g];
+    if (has_exact)
+      row.J_exact = (g ? row.J_exact : 0.) + goals[g].weight * J_exact[g];
+  }
+}
+} // namespace anisodwr::dwr_loop
