@@ -43,7 +43,7 @@ struct Interpolated
     if (hemker)
       Hemker(1e-6, "").make_coarse_grid(tria);
     else
-      GridGenerator::hyper_cube(tria, 0., 1.);
+      GridGenerator::hyper_cube(tria, 0., 1., true);
     tria.refine_global(refinements);
     dofs.distribute_dofs(fe);
     u.reinit(dofs.n_dofs());
@@ -180,4 +180,66 @@ TEST(Probes, OverAndUndershootsOfBumpsAtVertices)
   EXPECT_LT(r.undershoot_goals_y, 3.);
   EXPECT_EQ(r.u_min, 0.);
   EXPECT_EQ(r.u_max, 1.);
+}
+
+namespace
+{
+/// u_0 = x, g_D = 2 on id 0 (x = 0), f = -1, alpha as given, Neumann flux as given on
+/// the other sides (ids 1-3 of a colorized unit square), T = 0.5.
+class DataScene : public Scene<2>
+{
+public:
+  DataScene(double alpha, double flux) : alpha(alpha), flux(flux)
+  {
+    end_time = 0.5;
+    dirichlet_ids = {0};
+    neumann_ids = {1, 2, 3};
+  }
+  std::string name() const override { return "data"; }
+  void make_coarse_grid(Triangulation<2> &tria) const override
+  {
+    GridGenerator::hyper_cube(tria, 0., 1., true);
+  }
+  Tensor<1, 2> convection(const Point<2> &, double) const override { return {}; }
+  double reaction(const Point<2> &x, double) const override { return alpha * x[1]; }
+  bool coefficients_depend_on_time() const override { return false; }
+  double rhs(const Point<2> &, double) const override { return -1.; }
+  double initial_value(const Point<2> &x) const override { return x[0]; }
+  double dirichlet_value(const Point<2> &, double) const override { return 2.; }
+  double neumann_value(const Point<2> &x, const Tensor<1, 2> &, double t) const override
+  {
+    return flux * x[1] * t;
+  }
+  double alpha, flux;
+};
+} // namespace
+
+TEST(Probes, BoundsFromTheDataByTheMaximumPrinciple)
+{
+  // data in [0, 2], alpha > 0 somewhere (0 is a bound), f = -1 over T = 0.5:
+  // -0.5 <= u <= 2; u_h = 2.3 - 3.1 x ranges over [-0.8, 2.3]
+  // (the colorized unit square of DataScene::make_coarse_grid)
+  Interpolated I(1, 3, [](const Point<2> &x) { return 2.3 - 3.1 * x[0]; }, false);
+  {
+    DataScene scene(1., 0.);
+    const auto b = data_bounds(I.dofs, scene);
+    ASSERT_TRUE(b.applies) << b.reason;
+    EXPECT_DOUBLE_EQ(b.u_min, -0.5);
+    EXPECT_DOUBLE_EQ(b.u_max, 2.);
+    const auto r = evaluate_probes(I.dofs, I.mapping, I.u, ProbeSpec<2>(), scene, 0.5);
+    EXPECT_EQ(r.bounds, "data");
+    EXPECT_NEAR(r.overshoot, 0.3, 1e-12);
+    EXPECT_NEAR(r.undershoot, 0.3, 1e-12);
+    EXPECT_NEAR(r.undershoot_x, 1., 1e-12);
+  }
+  // alpha < 0 somewhere, or Neumann data not zero: no bounds, NaN over-/undershoots
+  for (const auto &[alpha, flux] : {std::pair{-1., 0.}, std::pair{0., 1.}})
+  {
+    DataScene scene(alpha, flux);
+    const auto b = data_bounds(I.dofs, scene);
+    EXPECT_FALSE(b.applies);
+    const auto r = evaluate_probes(I.dofs, I.mapping, I.u, ProbeSpec<2>(), scene, 0.5);
+    EXPECT_EQ(r.bounds.rfind("none", 0), 0u) << r.bounds;
+    EXPECT_TRUE(std::isnan(r.overshoot));
+  }
 }

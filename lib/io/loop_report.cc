@@ -208,7 +208,7 @@ std::string summary_json(const SummaryContext &context, const std::vector<LoopRo
     f << "}, \"probes\": {";
     for (const auto &[name, value] : r.probes)
       f << "\"" << name << "\": " << num(value) << ", ";
-    f << "\"u_min\": " << num(r.u_min) << ", \"u_max\": " << num(r.u_max) << "}}";
+    f << "\"bounds\": \"" << r.bounds << "\"}}";
   }
   f << "\n  ],\n  \"wall_time\": " << num(wall)
     << ",\n  \"peak_memory_mb\": " << num(peak_memory_mb()) << ",\n  "

@@ -56,7 +56,7 @@ struct LoopRow
   std::array<unsigned int, 5> marking{};
   /// the probes by name (the columns of probes.csv) and the bounds they used
   std::vector<std::pair<std::string, double>> probes;
-  double u_min = 0, u_max = 0;
+  std::string bounds; ///< where the probes' bounds come from (ProbeResult::bounds)
   double J_error() const { return std::abs(J_exact - J); }
   double I_eff() const { return std::abs((eta_h_total + eta_tau) / (J_exact - J)); }
   /// |eta_h,x| + |eta_h,y| + |eta_tau| without signs: per goal, weighted by |w_i|, when

@@ -20,8 +20,7 @@ void write_loop_outputs(const Parameters &prm, const Scene<2> &scene,
   const ProbeResult probes = evaluate_probes(primal.dof_handler(), primal.mapping(), uT,
                                              probe_spec, scene, scene.end_time);
   row.probes = probes.named();
-  row.u_min = probes.u_min;
-  row.u_max = probes.u_max;
+  row.bounds = probes.bounds;
   const unsigned int loop = row.loop;
   for (const auto &l : probe_spec.cut_lines)
     write_line_csv(

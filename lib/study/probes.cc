@@ -150,6 +150,96 @@ double LineEvaluator<dim>::first_crossing(double level, unsigned int scan) const
 }
 
 template <int dim>
+DataBounds data_bounds(const DoFHandler<dim> &dofs, const Scene<dim> &scene)
+{
+  DataBounds b;
+  constexpr unsigned int n_times = 17;
+  const double T = scene.end_time;
+  const auto time = [&](unsigned int k) { return T * k / (n_times - 1); };
+  const auto &tria = dofs.get_triangulation();
+  double lo = 1e300, hi = -1e300, f_lo = 0., f_hi = 0., alpha_min = 1e300, alpha_max = -1e300;
+  std::vector<bool> seen(tria.n_vertices(), false);
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const unsigned int v : cell->vertex_indices())
+    {
+      if (seen[cell->vertex_index(v)])
+        continue;
+      seen[cell->vertex_index(v)] = true;
+      const Point<dim> &x = cell->vertex(v);
+      const double u0 = scene.initial_value(x);
+      lo = std::min(lo, u0);
+      hi = std::max(hi, u0);
+      for (unsigned int k = 0; k < n_times; ++k)
+      {
+        const double f = scene.rhs(x, time(k)), alpha = scene.reaction(x, time(k));
+        f_lo = std::min(f_lo, f);
+        f_hi = std::max(f_hi, f);
+        alpha_min = std::min(alpha_min, alpha);
+        alpha_max = std::max(alpha_max, alpha);
+      }
+    }
+  double flux_max = 0.;
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+      if (cell->face(f)->at_boundary())
+      {
+        const auto id = cell->face(f)->boundary_id();
+        const bool dirichlet = scene.dirichlet_ids.count(id) > 0,
+                   neumann = scene.neumann_ids.count(id) > 0;
+        if (!dirichlet && !neumann)
+          continue;
+        const auto face = cell->face(f);
+        Tensor<1, dim> n;
+        if constexpr (dim == 2)
+        {
+          const Tensor<1, dim> edge = face->vertex(1) - face->vertex(0);
+          n[0] = edge[1];
+          n[1] = -edge[0];
+          n /= n.norm();
+          if (n * (face->center() - cell->center()) < 0)
+            n *= -1.;
+        }
+        for (unsigned int v = 0; v < face->n_vertices(); ++v)
+          for (unsigned int k = 0; k < n_times; ++k)
+            if (dirichlet)
+            {
+              const double g = scene.boundary_value(face->vertex(v), time(k), id);
+              lo = std::min(lo, g);
+              hi = std::max(hi, g);
+            }
+            else
+              flux_max = std::max(
+                  flux_max, std::abs(scene.boundary_flux(face->vertex(v), n, time(k), id)));
+      }
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !std::isfinite(f_lo) ||
+      !std::isfinite(f_hi))
+  {
+    b.reason = "none: the data are not finite at a vertex";
+    return b;
+  }
+  if (alpha_min < 0.)
+  {
+    b.reason = "none: alpha < 0 somewhere (no maximum principle)";
+    return b;
+  }
+  if (flux_max > 0.)
+  {
+    b.reason = "none: Neumann data not zero (no maximum principle)";
+    return b;
+  }
+  if (alpha_max > 0.)
+  {
+    lo = std::min(lo, 0.);
+    hi = std::max(hi, 0.);
+  }
+  b.applies = true;
+  b.reason = "data";
+  b.u_min = lo + T * f_lo;
+  b.u_max = hi + T * f_hi;
+  return b;
+}
+
+template <int dim>
 ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &mapping,
                             const Vector<double> &u, const ProbeSpec<dim> &spec,
                             const Scene<dim> &scene, double time)
@@ -159,12 +249,17 @@ ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &map
   const QIterated<dim> points(QTrapezoid<1>(), std::max(1u, fe.degree));
   FEValues<dim> fv(mapping, fe, points, update_values | update_quadrature_points);
   std::vector<double> uh(points.size());
-  const bool exact_bounds = std::isnan(spec.u_min) || std::isnan(spec.u_max);
-  // neither bounds nor an exact solution (a custom scene): no over-/undershoots
-  const bool no_bounds = exact_bounds && !scene.exact();
-  r.u_min = exact_bounds ? 1e300 : spec.u_min;
-  r.u_max = exact_bounds ? -1e300 : spec.u_max;
-  if (exact_bounds && !no_bounds)
+  const bool spec_bounds = !std::isnan(spec.u_min) && !std::isnan(spec.u_max);
+  const bool exact_bounds = !spec_bounds && scene.exact();
+  // neither the scene's bounds nor an exact solution (a custom scene): the data's
+  DataBounds from_data;
+  if (!spec_bounds && !exact_bounds)
+    from_data = data_bounds(dofs, scene);
+  const bool no_bounds = !spec_bounds && !exact_bounds && !from_data.applies;
+  r.bounds = spec_bounds ? "scene" : exact_bounds ? "exact" : from_data.reason;
+  r.u_min = spec_bounds ? spec.u_min : exact_bounds ? 1e300 : from_data.u_min;
+  r.u_max = spec_bounds ? spec.u_max : exact_bounds ? -1e300 : from_data.u_max;
+  if (exact_bounds)
     for (const auto &cell : dofs.active_cell_iterators())
     {
       fv.reinit(cell);
@@ -256,6 +351,7 @@ void write_line_csv(const std::string &path, const LineEvaluator<dim> &line,
 }
 
 template class LineEvaluator<2>;
+template DataBounds data_bounds<2>(const DoFHandler<2> &, const Scene<2> &);
 template ProbeResult evaluate_probes<2>(const DoFHandler<2> &, const Mapping<2> &,
                                         const Vector<double> &, const ProbeSpec<2> &,
                                         const Scene<2> &, double);

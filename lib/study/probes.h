@@ -69,9 +69,12 @@ struct ProbeResult
   double undershoot_goals_x = std::numeric_limits<double>::quiet_NaN(),
          undershoot_goals_y = std::numeric_limits<double>::quiet_NaN();
   double u_min = 0, u_max = 0; ///< the bounds used
+  /// Where the bounds come from: "scene" (the scene's own), "exact" (the exact
+  /// solution's extrema at T), "data" (the maximum principle on the data, see
+  /// data_bounds) or "none: <reason>" (over-/undershoots are then NaN).
+  std::string bounds = "none";
 
-  /// The per-loop outputs by name, in the column order of probes.csv (the bounds are
-  /// not among them).
+  /// The per-loop outputs by name, in the column order of probes.csv.
   std::vector<std::pair<std::string, double>> named() const
   {
     return {{"layer_width", layer_width},
@@ -86,9 +89,27 @@ struct ProbeResult
             {"undershoot_x", undershoot_x},
             {"undershoot_y", undershoot_y},
             {"undershoot_goals_x", undershoot_goals_x},
-            {"undershoot_goals_y", undershoot_goals_y}};
+            {"undershoot_goals_y", undershoot_goals_y},
+            {"u_min", u_min},
+            {"u_max", u_max}};
   }
 };
+
+/// Bounds of the solution from its data by the maximum principle of
+/// u_t - eps Lap u + b.grad u + alpha u = f on [0, T] (alpha >= 0, homogeneous Neumann
+/// data): with m, M the extrema of u_0 and g_D (and 0 where alpha > 0 somewhere),
+/// m - T max(f^-) <= u <= M + T max(f^+). The data are sampled at the mesh's vertices
+/// (u_0, f, alpha) and at the vertices of Dirichlet and Neumann faces (g_D, the Neumann
+/// flux), at 17 equidistant times in [0, T]. `applies` is false, with the reason, where
+/// the principle does not hold: alpha < 0 somewhere, or Neumann data not zero.
+struct DataBounds
+{
+  bool applies = false;
+  std::string reason;
+  double u_min = 0, u_max = 0;
+};
+template <int dim>
+DataBounds data_bounds(const dealii::DoFHandler<dim> &dofs, const Scene<dim> &scene);
 
 /// Over-/undershoots are taken at the points of the p-times iterated trapezoidal rule
 /// on every cell (the vertices for Q1, where a Q1 function takes its extrema).
