@@ -155,7 +155,8 @@ TEST(Parameters, DefaultsListEveryChoice)
 }
 
 // adaptivity.adjoint_delta0 sets the adjoint's SUPG delta0 (negative: the primal's);
-// adjoint_stabilization = none overrides it with 0. The primal space keeps its own.
+// adjoint_stabilization = none overrides it with 0; adjoint_inverse_bound caps it on
+// cells where the diffusion dominates. The primal space keeps its own.
 TEST(Parameters, AdjointDelta0ReachesTheAdjointSpace)
 {
   dealii::Triangulation<2> tria;
@@ -181,4 +182,10 @@ TEST(Parameters, AdjointDelta0ReachesTheAdjointSpace)
                   true),
             0.);
   EXPECT_NE(error_of({"adaptivity.adjoint_delta0=-2"}), "");
+  // adjoint_inverse_bound (default true): delta_K <= h_min^2 / (eps q^4); with eps = 1,
+  // h_min = 1/4, q = 2: 1/256, i.e. delta_K / h_K = 1/64; the primal keeps 0.8
+  EXPECT_NEAR(delta({"scene.epsilon=1"}, true), 1. / 64., 1e-14);
+  EXPECT_NEAR(delta({"scene.epsilon=1", "adaptivity.adjoint_inverse_bound=false"}, true),
+              0.8, 1e-14);
+  EXPECT_NEAR(delta({"scene.epsilon=1"}, false), 0.8, 1e-14);
 }

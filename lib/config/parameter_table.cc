@@ -371,7 +371,7 @@ std::vector<Entry> goal_entries()
       {"goal", "radius", "0.01", m(&S::radius), real(0.),
        "Mollifier radius s of point goals; 0 = exact point evaluation (Dirac).",
        "a number >= 0 (and at most the diameter of the scene's domain)"},
-      {"goal", "weights", "1", m(&S::weights), text,
+      {"goal", "weights", "estimate", m(&S::weights), text,
        "Weights w_i of J_w = sum w_i J_i: one number for all goals, a comma list (one "
        "per goal), auto (w_i = sign(J_i(I_2h u) - J_i(u_h)) / max(|J_i(u_h)|, 1e-12); "
        "+1 / |J_i(u_h)| where |J_i(I_2h u) - J_i(u_h)| <= 1e-8 |J_i(u_h)|, the lift not "
@@ -516,6 +516,12 @@ std::vector<Entry> adaptivity_entries()
       {"adaptivity", "adjoint_delta0", "-1", m(&S::adjoint_delta0), real(-1.),
        "delta0 of the transposed SUPG adjoint (adjoint_stabilization = transposed); negative "
        "(default -1): discretization.delta0. The estimator's S terms always use the primal's delta_K."},
+      {"adaptivity", "adjoint_inverse_bound", "true", m(&S::adjoint_inverse_bound), boolean,
+       "Bound the transposed SUPG adjoint's delta_K <= h_min,K^2 / (eps q^4) (h_min,K the "
+       "shortest vertex distance of K): the inverse estimate's bound that keeps the SUPG "
+       "term's eps Lap part below the diffusion. Without it the adjoint of degree q = 4 "
+       "grows without bound on thin cells (doc/results.md, 'Error control without "
+       "tuning'); false: delta_K = adjoint_delta0 h_K alone."},
   };
 }
 

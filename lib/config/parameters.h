@@ -121,6 +121,8 @@ struct AdaptivitySection : MarkingOptions
   SpaceIndicator space_indicator = SpaceIndicator::primal_residual;
   AdjointStabilization adjoint_stabilization = AdjointStabilization::transposed;
   double adjoint_delta0 = -1.; ///< < 0: discretization.delta0
+  /// the adjoint's delta_K <= h_min^2 / (eps q^4) (Stabilization::inverse_bound)
+  bool adjoint_inverse_bound = true;
 };
 
 struct OutputSection

@@ -51,7 +51,7 @@ struct GoalInput
   std::string locations = ""; ///< the kind's locations, separated by ";"
   bool over_time = false;
   double radius = 0.01;
-  std::string weights = "1"; ///< auto, one number or one per goal
+  std::string weights = "estimate"; ///< auto, one number or one per goal
   std::string reference = ""; ///< "J_1[+-u_1], ...": reference values, or empty
   std::string locations_source = "default", radius_source = "default",
               weights_source = "default", reference_source = "default";

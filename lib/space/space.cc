@@ -93,14 +93,20 @@ double Space<dim>::unbounded_delta(const typename Triangulation<dim>::cell_itera
   const double delta0 = stab.delta0;
   if (delta0 == 0.)
     return 0.;
+  double delta = delta0 * std::pow(cell->measure(), 1.0 / dim);
   if (stab.supg_length == SupgLength::streamline)
   {
     // the length along beta = b/|b| at the centre at t = 0
     const Tensor<1, dim> b = scene.convection(cell->center(), 0.);
     if (b.norm() > 0)
-      return delta0 * length_along(cell, b / b.norm());
+      delta = delta0 * length_along(cell, b / b.norm());
   }
-  return delta0 * std::pow(cell->measure(), 1.0 / dim);
+  if (stab.inverse_bound && scene.epsilon > 0.)
+  {
+    const double h = cell->minimum_vertex_distance(), q2 = double(fe.degree * fe.degree);
+    delta = std::min(delta, h * h / (scene.epsilon * q2 * q2));
+  }
+  return delta;
 }
 
 template <int dim>

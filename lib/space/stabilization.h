@@ -34,5 +34,10 @@ struct Stabilization
   /// crosswind diffusion eps_cw,K = crosswind0 max(0, |b| h_cw,K / 2 - eps) across b
   /// (h_cw,K: the length of K across b at its centre); 0 turns it off
   double crosswind0 = 0.;
+  /// Bound delta_K <= h_min,K^2 / (eps q^4) (h_min,K the shortest distance of two
+  /// vertices of K, q the degree): keeps the SUPG term's eps Lap part below the
+  /// diffusion (the inverse estimate |Lap v|_K <= q^2/h_min,K |grad v|_K), which on thin
+  /// cells of a high degree it otherwise is not. Off for the primal.
+  bool inverse_bound = false;
 };
 } // namespace anisodwr

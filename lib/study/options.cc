@@ -41,10 +41,11 @@ namespace
 std::unique_ptr<Space<2>> make_space_with(const Parameters &prm, const Scene<2> &scene,
                                           const dealii::Triangulation<2, 2> &tria,
                                           unsigned int degree, double delta0,
-                                          double tau_scale)
+                                          double tau_scale, bool inverse_bound = false)
 {
   Stabilization stab = prm.discretization;
   stab.delta0 = delta0;
+  stab.inverse_bound = inverse_bound;
   stab.supg_tau_factor *= tau_scale;
   auto space = std::make_unique<Space<2>>(scene, tria, degree, stab);
   const DofNumbering numbering = prm.solver.dof_numbering;
@@ -85,7 +86,7 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
   const double delta0 = a.adjoint_stabilization == AdjointStabilization::none ? 0.
                         : a.adjoint_delta0 >= 0                              ? a.adjoint_delta0
                                                 : prm.discretization.delta0;
-  return make_space_with(prm, scene, tria, degree, delta0, 1.);
+  return make_space_with(prm, scene, tria, degree, delta0, 1., a.adjoint_inverse_bound);
 }
 
 std::vector<std::string> dwr_warnings(const Parameters &prm)
