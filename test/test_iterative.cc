@@ -132,6 +132,60 @@ TEST(Iterative, KroneckerWithTimeDependentCoefficientsStillConverges)
   EXPECT_LE(it.timings().max_krylov_iterations, 40u);
 }
 
+// preconditioner = modes: the exact mode solve of the slab operator frozen at a slab's
+// middle. Rotating b(t), alpha(t) (manufactured "rotating"), r = 1 and 2, a march of
+// 8 slabs, primal and transposed: every slab agrees with the coupled direct solve to
+// 1e-8 relative; with a refactorization threshold the factors serve several slabs (one
+// factorization for the first slab, then fewer than one per slab); with threshold 0
+// every slab refactorizes; with coefficients constant in time the frozen operator is
+// K itself (one iteration).
+TEST(Iterative, FrozenModesPreconditionerAgreesWithDirect)
+{
+  for (const unsigned int r : {1u, 2u})
+    for (const bool adjoint : {false, true})
+      for (const unsigned int threshold : {0u, 10u})
+      {
+        SlabProblem s("manufactured", "rotating", adjoint ? 2 : 1, 1e-2);
+        const TemporalBasis basis(r);
+        SlabSolverOptions o = iterative("gmres", "modes", 1e-12);
+        o.iterative.refactor_iterations = threshold;
+        SlabOperator<2> direct(*s.space, basis, SlabSolverOptions::direct(true));
+        SlabOperator<2> it(*s.space, basis, o);
+        const unsigned int n_slabs = 8;
+        const double tau = 0.5 / n_slabs;
+        for (unsigned int n = 0; n < n_slabs; ++n)
+        {
+          direct.prepare(n * tau, tau);
+          it.prepare(n * tau, tau);
+          ASSERT_TRUE(it.frozen_modes());
+          const Vector<double> load = random_vector(direct.n_slab_dofs(), 11 + n);
+          Vector<double> Ud, Ui;
+          direct.solve(load, Ud, adjoint);
+          it.solve(load, Ui, adjoint);
+          Ui -= Ud;
+          EXPECT_LE(Ui.l2_norm(), 1e-8 * Ud.l2_norm())
+              << "r = " << r << (adjoint ? ", adjoint" : ", primal") << ", slab " << n;
+        }
+        const auto &t = it.timings();
+        EXPECT_EQ(t.n_krylov_solves, n_slabs);
+        EXPECT_EQ(t.n_fallbacks, 0u);
+        EXPECT_LE(t.max_krylov_iterations, 20u);
+        if (threshold == 0)
+          EXPECT_EQ(t.n_frozen_factorizations, n_slabs);
+        else
+          EXPECT_LT(t.n_frozen_factorizations, n_slabs / 2);
+      }
+  // constant coefficients: the frozen operator is K, one iteration per solve
+  SlabProblem s("moving_hump", "", 1, 1e-4);
+  const TemporalBasis basis(2);
+  SlabOperator<2> it(*s.space, basis, iterative("gmres", "modes", 1e-10));
+  it.prepare(0.1, 0.05);
+  Vector<double> U;
+  it.solve(random_vector(it.n_slab_dofs(), 5), U);
+  EXPECT_EQ(it.timings().max_krylov_iterations, 1u);
+  EXPECT_EQ(it.timings().n_frozen_factorizations, 1u);
+}
+
 TEST(Iterative, NonConvergenceThrowsOrFallsBack)
 {
   SlabProblem s("moving_hump", "", 1, 1e-6);
@@ -216,6 +270,39 @@ TEST(Iterative, AutoPicksBySlabSizeWhenEachSlabIsFactorized)
   EXPECT_EQ(auto_picks_iterative(o, 1e4, 2, 1, false), true);  // 2e4 >= 2e4 (Q1)
   EXPECT_EQ(auto_picks_iterative(o, 1e4, 2, 2, false), false); // 2e4 < 3e5 (Q2)
   EXPECT_EQ(auto_picks_iterative(o, 1e4, 2, 1, true), false);  // one factorization serves
+}
+
+// solver.type = auto on coefficients that depend on time: Krylov preconditioned by the
+// frozen operator's modes while their predicted peak fits; not with MUMPS, not for
+// direct_only (concurrent marches), and not with coefficients constant in time.
+TEST(Iterative, AutoPicksFrozenModesWhereCoefficientsDependOnTime)
+{
+  SlabProblem s("manufactured", "rotating", 1, 1e-2);
+  const TemporalBasis basis(1);
+  SlabSolverOptions o;
+  o.type = SolverType::automatic;
+  o.auto_memory_mb = 1e9;
+  SlabOperator<2> rotating(*s.space, basis, o);
+  rotating.prepare(0., 0.05);
+  EXPECT_TRUE(rotating.iterative());
+  EXPECT_TRUE(rotating.frozen_modes());
+  EXPECT_NE(rotating.auto_choice().find("mode solver of the slab operator frozen"),
+            std::string::npos)
+      << rotating.auto_choice();
+  const double n = s.space->n_dofs();
+  EXPECT_TRUE(auto_picks_frozen_modes(o, n, 2, 1, false));
+  EXPECT_FALSE(auto_picks_frozen_modes(o, n, 2, 1, true)); // constant: modes, exact
+  SlabSolverOptions tight = o;
+  tight.auto_memory_mb = 1e-6;
+  EXPECT_FALSE(auto_picks_frozen_modes(tight, n, 2, 1, false));
+  SlabSolverOptions mumps = o;
+  mumps.direct_solver = DirectEngine::mumps;
+  EXPECT_FALSE(auto_picks_frozen_modes(mumps, n, 2, 1, false));
+  SlabSolverOptions only = o;
+  only.direct_only = true;
+  EXPECT_FALSE(auto_picks_frozen_modes(only, n, 2, 1, false));
+  EXPECT_TRUE(solves_iteratively(o, n, 2, 1, false));
+  EXPECT_TRUE(solves_by_frozen_modes(o, n, 2, 1, false));
 }
 
 TEST(Iterative, AutoUsesUmfpackWhileItsPredictedPeakFits)

@@ -293,7 +293,16 @@ std::vector<Entry> solver_entries()
        "those blocks; kronecker = real Schur decomposition of (tau Mhat)^{-1} D "
        "decoupling "
        "the temporal modes, ILU(k) of each shifted spatial matrix, PRESB for complex "
-       "pairs (coefficients frozen at the slab midpoint if they depend on t); none."},
+       "pairs (coefficients frozen at the slab midpoint if they depend on t); modes = "
+       "the exact temporal-mode solve (solver.type = modes: one UMFPACK LU per mode) of "
+       "the slab operator with its coefficients frozen at the slab's middle, reused over "
+       "the following slabs until a solve needs more than solver.refactor_iterations "
+       "iterations (for coefficients constant in time it is exact: one iteration); none."},
+      {"solver", "refactor_iterations", "10", k(&I::refactor_iterations),
+       integer(0, 1000000),
+       "preconditioner = modes: refactorize the frozen operator (at the next slab's "
+       "middle) once a Krylov solve has needed more than this many iterations; 0 "
+       "refactorizes on every slab."},
       {"solver", "tolerance", "1e-10", k(&I::tolerance), real(0.),
        "Krylov stopping rule: ||b - K x|| <= tolerance ||b|| (true residual checked)."},
       {"solver", "restart", "30", k(&I::restart), integer(1, 10000),
@@ -376,10 +385,13 @@ std::vector<Entry> goal_entries()
        "per goal), auto (w_i = sign(J_i(I_2h u) - J_i(u_h)) / max(|J_i(u_h)|, 1e-12); "
        "+1 / |J_i(u_h)| where |J_i(I_2h u) - J_i(u_h)| <= 1e-8 |J_i(u_h)|, the lift not "
        "seeing the goal) or "
-       "estimate (w_i = sign(eta_i) / max(|J_i(u_h)|, 1e-12), eta_i from each goal's own "
-       "adjoint: one adjoint march per goal with one factorization, one estimate per "
-       "goal; the indicators of J_w are sum_i w_i times goal i's, so the goals' "
-       "estimates add up without cancelling)."},
+       "estimate (the default: w_i = sign(eta_i) / max(|J_i(u_h)|, 0.01 |J_i(1)| max|u_h|, "
+       "1e-12), eta_i from each goal's own adjoint, max|u_h| the largest nodal value of "
+       "u_h over the slabs: one adjoint march per goal with one factorization, one "
+       "estimate per goal; the indicators of J_w are sum_i w_i times goal i's, so the "
+       "goals' estimates add up without cancelling, and each goal's error counts "
+       "relative to its value, or to 1% of the solution's size where the value is "
+       "smaller)."},
       {"goal", "reference", "", m(&S::reference), text,
        "Reference values of the goals for scenes without an exact solution: one value "
        "per goal, comma-separated, each optionally with its uncertainty as value+-u "
@@ -446,8 +458,9 @@ std::vector<Entry> adaptivity_entries()
        "(0: no tolerance). It bounds the error of the combined goal J_w = sum_i w_i J_i "
        "within the effectivity band (doc/results.md, 'Error control without tuning'): "
        "absolute in J_w's units for numeric goal.weights, relative for goal.weights = "
-       "estimate or auto (w_i = +-1/|J_i(u_h)|: the sum over the goals of their "
-       "relative errors)."},
+       "estimate (the default) or auto (w_i = +-1/|J_i(u_h)|: the sum over the goals of "
+       "their relative errors; with estimate each goal's error relative to the larger of "
+       "|J_i(u_h)| and 1% of |J_i(1)| max|u_h|)."},
       {"adaptivity", "tolerance_measure", "parts", m(&S::tolerance_measure), by_name,
        "What adaptivity.tolerance bounds. eta: |eta_tau_h|, the signed sum of all "
        "indicators; parts: |eta_h,x| + |eta_h,y| + |eta_tau| without signs, and with one "

@@ -41,6 +41,10 @@ inline double signed_goal_weight(double s, double J, double unseen = 0)
   return (std::abs(s) <= unseen * a || s >= 0 ? 1. : -1.) / a;
 }
 
+/// goal.weights = estimate: the weight's denominator is at least this fraction of the
+/// goal applied to the solution's largest value, estimate_weight_floor |J_i(1)| max|u_h|.
+constexpr double estimate_weight_floor = 1e-2;
+
 /// Relative size below which the lift difference of goal.weights = auto counts as zero.
 constexpr double auto_weight_unseen = 1e-8;
 /// The goal section of a config and, for messages, where goal.locations, goal.radius

@@ -53,7 +53,8 @@ std::string solver_totals_json()
          ", \"krylov\": {\"solves\": " + std::to_string(totals.krylov_solves) +
          ", \"iterations\": " + std::to_string(totals.krylov_iterations) +
          ", \"max_iterations\": " + std::to_string(totals.max_krylov_iterations) +
-         ", \"inner_iterations\": " + std::to_string(totals.inner_iterations) + "}";
+         ", \"inner_iterations\": " + std::to_string(totals.inner_iterations) +
+         ", \"frozen_factorizations\": " + std::to_string(totals.frozen_factorizations) + "}";
 }
 
 template <int dim>
@@ -128,11 +129,29 @@ void SlabOperator<dim>::factorize_modes(bool release)
 }
 
 template <int dim>
-void SlabOperator<dim>::choose_solver(bool factorization_reused)
+void SlabOperator<dim>::choose_solver(bool constant)
 {
   const unsigned int m = basis.n_dofs();
   const double n = double(space.n_dofs()) * m;
   const double budget = auto_memory_budget_mb(opt);
+  const bool factorization_reused = constant && reuse;
+  if (auto_picks_frozen_modes(opt, space.n_dofs(), m, space.degree(), constant))
+  {
+    use_modes = false;
+    use_iterative = true;
+    it_opt.preconditioner = Preconditioner::modes;
+    if (it_opt.krylov == Krylov::bicgstab)
+      it_opt.krylov = Krylov::gmres;
+    choice = "iterative, preconditioned by the mode solver of the slab operator frozen at "
+             "the slab's middle (coefficients depend on time; refactorized after a solve "
+             "of more than " +
+             std::to_string(it_opt.refactor_iterations) +
+             " iterations; predicted peak " +
+             std::to_string(long(std::ceil(
+                 std::min(predicted_modes_mb(space.n_dofs(), space.degree(), m), 1e15)))) +
+             " MB + 10%, budget " + std::to_string(long(budget)) + " MB)";
+    return;
+  }
   use_modes = auto_picks_modes(opt, space.n_dofs(), m, space.degree(), factorization_reused);
   if (use_modes)
   {
@@ -242,8 +261,9 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
   // The kronecker preconditioners work matrix-free: K is assembled only if needed.
   K.clear();
   k_assembled = false;
+  it_opt = opt.iterative;
   if (opt.type == SolverType::automatic)
-    choose_solver(constant && reuse);
+    choose_solver(constant);
   else
   {
     use_iterative = opt.type == SolverType::iterative;
@@ -251,8 +271,14 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     if (opt.type == SolverType::modes && !constant)
       warn_modes_time_dependent();
   }
+  use_frozen = use_iterative && it_opt.preconditioner == Preconditioner::modes;
+  if (use_frozen &&
+      (frozen.stale || !frozen.lu.factorized() ||
+       std::abs(frozen.tau - tau_n) > 1e-12 * tau_n ||
+       frozen.max_iterations > it_opt.refactor_iterations))
+    freeze(t_start, tau_n);
   if ((!use_iterative && !use_modes) ||
-      (use_iterative && IterativeSlabSolver::needs_assembled_matrix(opt.iterative)) ||
+      (use_iterative && IterativeSlabSolver::needs_assembled_matrix(it_opt)) ||
       !opt.dump_matrix.empty())
     assemble_matrix();
   if (!opt.dump_matrix.empty())
@@ -275,6 +301,28 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
   factorized = true;
   t0 = t_start;
   tau = tau_n;
+}
+
+template <int dim>
+void SlabOperator<dim>::freeze(double t_start, double tau_n)
+{
+  Timer timer;
+  frozen.lu.clear();
+  space.assemble_matrices(t_start + 0.5 * tau_n, tau_n, frozen.mats);
+  FullMatrix<double> tM(basis.mass());
+  tM *= tau_n;
+  frozen.lu.factorize(
+      KronSplit{basis.derivative_with_jump(), tM, &frozen.mats.Mc, &frozen.mats.Ac});
+  // the mode solver keeps a pointer to Mc (the Schur form's coupling) only
+  frozen.mats.M.clear();
+  frozen.mats.A.clear();
+  frozen.mats.Ac.clear();
+  frozen.tau = tau_n;
+  frozen.max_iterations = 0;
+  frozen.stale = false;
+  time.factorize += timer.wall_time();
+  ++time.n_frozen_factorizations;
+  ++totals.frozen_factorizations;
 }
 
 template <int dim>
@@ -399,12 +447,13 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
   if (!krylov[d])
   {
     Timer timer;
-    auto solver = std::make_unique<IterativeSlabSolver>(opt.iterative);
+    auto solver = std::make_unique<IterativeSlabSolver>(it_opt);
     SlabMatrix matrix;
     matrix.assembled = k_assembled ? &K : nullptr;
     matrix.terms = &terms_cond;
     matrix.m = basis.n_dofs();
     matrix.split = &kron;
+    matrix.modes = use_frozen ? &frozen.lu : nullptr;
     solver->setup(matrix, transpose);
     krylov[d] = std::move(solver);
     setup_time = timer.wall_time();
@@ -426,11 +475,23 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
     totals.krylov_iterations += stats.iterations;
     totals.max_krylov_iterations =
         std::max<unsigned long>(totals.max_krylov_iterations, stats.iterations);
+    if (use_frozen)
+      frozen.max_iterations = std::max(frozen.max_iterations, stats.iterations);
   }
-  catch (const KrylovFailure &)
+  catch (const KrylovFailure &e)
   {
+    if (use_frozen)
+      frozen.stale = true; // the next slab refactorizes
     if (opt.fallback != Fallback::direct)
       throw;
+    if (use_frozen)
+      on_output_rank(
+          [&]()
+          {
+            std::cerr << "anisodwr: Krylov solve on slab (" << t0 << ", " << t0 + tau
+                      << "] failed (" << e.what()
+                      << "); solved by the coupled direct solver\n";
+          });
     ++time.n_fallbacks;
     ++totals.fallbacks;
     Timer timer;

@@ -35,13 +35,15 @@ struct SlabTimings
                max_krylov_iterations = 0, n_fallbacks = 0;
   /// GMRES iterations inside the kronecker* preconditioners (solver.inner_iterations)
   unsigned long inner_iterations = 0;
+  /// preconditioner = modes: factorizations of the frozen operator
+  unsigned int n_frozen_factorizations = 0;
 };
 
 /// Process-wide totals over all SlabOperators (for summary.json).
 struct SolverTotals
 {
   unsigned long krylov_solves = 0, krylov_iterations = 0, max_krylov_iterations = 0,
-                fallbacks = 0, inner_iterations = 0;
+                fallbacks = 0, inner_iterations = 0, frozen_factorizations = 0;
 };
 const SolverTotals &solver_totals();
 /// `"solver_fallbacks": n, "krylov": {...}` (JSON members, no braces).
@@ -86,6 +88,9 @@ public:
   }
   /// True if the last prepare() chose the iterative path.
   bool iterative() const { return use_iterative; }
+  /// True if the last prepare() chose the Krylov solve preconditioned by the frozen
+  /// operator's mode solver (solver.preconditioner = modes, or auto).
+  bool frozen_modes() const { return use_frozen; }
   /// True if the last prepare() chose the mode solver.
   bool modes() const { return use_modes; }
   /// The mode solver (its Schur form and factor sizes; empty unless modes()).
@@ -117,6 +122,22 @@ private:
   std::unique_ptr<IterativeSlabSolver> krylov[2]; // [transpose]
   dealii::Vector<double> guess[2];
   bool lu_valid = false, k_assembled = false;
+  /// The Krylov options in force (solver.iterative, or auto's choice).
+  IterativeOptions it_opt;
+  /// preconditioner = modes: the operator frozen at a slab's middle and its mode
+  /// factors, kept over the following slabs (see IterativeOptions::refactor_iterations).
+  struct Frozen
+  {
+    SpatialMatrices mats;
+    ModeDirectSolver lu;
+    double tau = -1;
+    unsigned int max_iterations = 0;
+    bool stale = true;
+  } frozen;
+  bool use_frozen = false;
+  /// Assembles the spatial matrices at t_start + tau_n/2 and factorizes the frozen
+  /// operator D (x) Mc + tau Mhat (x) Ac by its temporal modes.
+  void freeze(double t_start, double tau_n);
   /// The direct transposed solve of solve() (reads the factors and the constraints only).
   void direct_transposed(const dealii::Vector<double> &load, dealii::Vector<double> &U) const;
   void assemble_matrix();
@@ -131,9 +152,10 @@ private:
   /// and its pattern once UMFPACK has copied it, before the numeric factorization: the
   /// factorization's peak then holds only M, A, UMFPACK's copy and its work space.
   void factorize(bool release = false);
-  /// solver.type = auto: sets use_iterative (auto_picks_iterative), use_modes
+  /// solver.type = auto: sets use_iterative (auto_picks_frozen_modes, which also sets
+  /// it_opt's preconditioner to modes, or auto_picks_iterative), use_modes
   /// (auto_picks_modes) and `choice`.
-  void choose_solver(bool factorization_reused);
+  void choose_solver(bool constant);
   /// One LU per temporal mode of `kron`; with `release` frees A_c afterwards (M_c stays:
   /// the Schur form's coupling multiplies by it).
   void factorize_modes(bool release);

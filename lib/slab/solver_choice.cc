@@ -213,12 +213,32 @@ bool releases_assembly_matrices(const SlabSolverOptions &options,
          options.refinement_steps == 0;
 }
 
-bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
-                        unsigned int degree, bool factorization_reused)
+bool auto_picks_frozen_modes(const SlabSolverOptions &opt, double n_space, unsigned int m,
+                             unsigned int degree, bool coefficients_constant)
 {
+  return !coefficients_constant && opt.reuse_factorization && !opt.direct_only &&
+         opt.direct_solver == DirectEngine::umfpack &&
+         auto_memory_margin * predicted_modes_mb(n_space, degree, m) <=
+             auto_memory_budget_mb(opt);
+}
+
+bool solves_by_frozen_modes(const SlabSolverOptions &options, double n_space,
+                            unsigned int m, unsigned int degree, bool coefficients_constant)
+{
+  return (options.type == SolverType::iterative &&
+          options.iterative.preconditioner == Preconditioner::modes) ||
+         (options.type == SolverType::automatic &&
+          auto_picks_frozen_modes(options, n_space, m, degree, coefficients_constant));
+}
+
+bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
+                        unsigned int degree, bool coefficients_constant)
+{
+  const bool reused = options.reuse_factorization && coefficients_constant;
   return options.type == SolverType::iterative ||
          (options.type == SolverType::automatic && !options.direct_only &&
-          !auto_picks_modes(options, n_space, m, degree, factorization_reused) &&
-          auto_picks_iterative(options, n_space * m, m, degree, factorization_reused));
+          (auto_picks_frozen_modes(options, n_space, m, degree, coefficients_constant) ||
+           (!auto_picks_modes(options, n_space, m, degree, reused) &&
+            auto_picks_iterative(options, n_space * m, m, degree, reused))));
 }
 } // namespace anisodwr

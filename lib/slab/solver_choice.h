@@ -96,9 +96,21 @@ bool solves_by_modes(const SlabSolverOptions &options, double n_space, unsigned 
 bool releases_assembly_matrices(const SlabSolverOptions &options,
                                 bool coefficients_constant);
 
+/// Whether solver.type = auto picks the Krylov solve preconditioned by the mode solver
+/// of the frozen operator (preconditioner = modes): coefficients that depend on time,
+/// reuse_factorization, UMFPACK, not direct_only, and predicted_modes_mb times
+/// auto_memory_margin fits auto_memory_budget_mb.
+bool auto_picks_frozen_modes(const SlabSolverOptions &opt, double n_space, unsigned int m,
+                             unsigned int degree, bool coefficients_constant);
+
+/// True if `options` solve by Krylov preconditioned by the frozen operator's modes
+/// (type iterative with preconditioner modes, or auto_picks_frozen_modes).
+bool solves_by_frozen_modes(const SlabSolverOptions &options, double n_space,
+                            unsigned int m, unsigned int degree, bool coefficients_constant);
+
 /// True if `options` solve the slab system of a space of FE_Q(degree) with n_space DoFs
-/// and a dG basis of m functions iteratively (type iterative, or auto_picks_iterative
-/// for n_space m unknowns, unless auto_picks_modes).
+/// and a dG basis of m functions iteratively (type iterative, or auto_picks_frozen_modes,
+/// or auto_picks_iterative for n_space m unknowns, unless auto_picks_modes).
 bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
-                        unsigned int degree, bool factorization_reused);
+                        unsigned int degree, bool coefficients_constant);
 } // namespace anisodwr

@@ -33,7 +33,8 @@ enum class Preconditioner
   block_gauss_seidel,
   block_ilu,
   kronecker,
-  kronecker_presb
+  kronecker_presb,
+  modes
 };
 inline const std::vector<Named<Preconditioner>> &names(Preconditioner)
 {
@@ -45,7 +46,8 @@ inline const std::vector<Named<Preconditioner>> &names(Preconditioner)
       {Preconditioner::block_gauss_seidel, "block_gauss_seidel"},
       {Preconditioner::block_ilu, "block_ilu"},
       {Preconditioner::kronecker, "kronecker"},
-      {Preconditioner::kronecker_presb, "kronecker_presb"}};
+      {Preconditioner::kronecker_presb, "kronecker_presb"},
+      {Preconditioner::modes, "modes"}};
   return table;
 }
 /// True for the Kronecker preconditioners (they work on the matrix-free K).
@@ -111,5 +113,10 @@ struct IterativeOptions
   /// bicgstab runs in chunks of `window` iterations and compares true residuals.
   unsigned int stagnation_window = 50;
   double stagnation_factor = 10.;
+  /// preconditioner = modes: the exact mode solve of the slab operator with its
+  /// coefficients frozen (at the slab's middle), factorized once and reused over the
+  /// following slabs until a Krylov solve needs more than refactor_iterations
+  /// iterations (then the next slab refactorizes at its own middle).
+  unsigned int refactor_iterations = 10;
 };
 } // namespace anisodwr

@@ -5,7 +5,9 @@
 #include "base/errors.h"
 #include "solver/ifpack2_factory.h"
 #include "solver/kronecker_operator.h"
+#include "solver/inner_gmres.h"
 #include "solver/kronecker_preconditioner.h"
+#include "solver/mode_solver.h"
 #include "solver/tpetra_bridge.h"
 
 #include <BelosBiCGStabSolMgr.hpp>
@@ -127,7 +129,8 @@ std::string IterativeSlabSolver::name() const
 
 bool IterativeSlabSolver::needs_assembled_matrix(const IterativeOptions &o)
 {
-  return !is_kronecker(o.preconditioner) && o.preconditioner != Preconditioner::none;
+  return !is_kronecker(o.preconditioner) && o.preconditioner != Preconditioner::none &&
+         o.preconditioner != Preconditioner::modes;
 }
 
 void IterativeSlabSolver::setup(const SlabMatrix &K, bool transpose)
@@ -155,6 +158,25 @@ void IterativeSlabSolver::setup(const SlabMatrix &K, bool transpose)
   const LO n_blocks = static_cast<LO>(N / m);
   if (p == Preconditioner::none)
     return;
+  if (p == Preconditioner::modes)
+  {
+    if (!K.modes || !K.modes->factorized())
+      throw std::logic_error("preconditioner modes needs the factorized frozen mode solver");
+    auto work = std::make_shared<dealii::Vector<double>>(N);
+    d.prec = rcp(new FunctionOperator(
+        d.map,
+        [modes = K.modes, work, transpose](const tpetra::Vec &in, tpetra::Vec &out)
+        {
+          auto x = in.getData();
+          for (std::size_t i = 0; i < work->size(); ++i)
+            (*work)[i] = x[i];
+          modes->solve(*work, transpose);
+          auto y = out.getDataNonConst();
+          for (std::size_t i = 0; i < work->size(); ++i)
+            y[i] = (*work)[i];
+        }));
+    return;
+  }
   if (is_kronecker(p))
   {
     if (!K.split)

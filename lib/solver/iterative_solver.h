@@ -16,6 +16,8 @@
 
 namespace anisodwr
 {
+class ModeDirectSolver;
+
 /// K = T1 (x) S1 + T2 (x) S2 (Kronecker factors in the interleaved ordering, T2
 /// invertible, S1 and S2 on one sparsity pattern): the input of the Kronecker
 /// preconditioner. For the slab operator: T1 = D, S1 = Mc, T2 = tau Mhat, S2 = Ac.
@@ -49,6 +51,9 @@ struct SlabMatrix
   const std::vector<KronTerm> *terms = nullptr;
   unsigned int m = 1;               ///< temporal block size r+1
   const KronSplit *split = nullptr; ///< for the kronecker preconditioners
+  /// preconditioner = modes: the factorized mode solver of a frozen operator (its
+  /// transposed solve preconditions K^T)
+  const ModeDirectSolver *modes = nullptr;
 };
 
 class IterativeSlabSolver

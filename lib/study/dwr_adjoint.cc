@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <numeric>
 #include <iostream>
 #include <sstream>
 
@@ -110,13 +111,26 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
 {
   Timer t;
   ind = Indicators<2>();
+  // goal.weights = estimate: relative to max(|J_i(u_h)|, 1e-2 |J_i(1)| max|u_h|), so a
+  // goal whose value is near 0 against the solution's size is not weighted without bound
+  double u_max = 0;
+  for (const auto &u : U)
+    u_max = std::max(u_max, u.linfty_norm());
   for (std::size_t i = 0; i < goals.size(); ++i)
   {
     const auto part = goal_estimate(primal, adjoint, U, Z[i], goals[i], hi);
     Z[i] = {};
     add_goal_estimate(row, part);
     if (estimate_weights)
-      goals[i].weight = signed_goal_weight(row.eta_goal[i], row.J_goal[i]);
+    {
+      Vector<double> j;
+      assemble_goal_vector(primal, unweighted(goals[i]), j);
+      const double one = std::accumulate(j.begin(), j.end(), 0.) *
+                         (goals[i].over_time ? scene->end_time : 1.);
+      goals[i].weight = signed_goal_weight(
+          row.eta_goal[i],
+          std::max(std::abs(row.J_goal[i]), estimate_weight_floor * std::abs(one) * u_max));
+    }
     add_scaled(ind, goals[i].weight, part);
   }
   if (estimate_weights)
@@ -159,9 +173,7 @@ bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
       MultithreadInfo::n_threads() > 1 && options.direct_solver == DirectEngine::umfpack &&
       !model.primal.iterative && !model.adjoint.iterative &&
       !(higher_order && solves_iteratively(options, primal.n_dofs(), prm.discretization.r + 2,
-                                           primal.degree(),
-                                           options.reuse_factorization &&
-                                               !model.time_dependent));
+                                           primal.degree(), !model.time_dependent));
   row.mem_estimate = estimate_memory(model).total_mb;
   if (model.concurrent && row.mem_estimate * mem_ratio > mem_limit.mb)
   {

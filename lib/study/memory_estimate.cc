@@ -68,6 +68,16 @@ Operator slab_operator(const SlabSystemSize &s, const MemoryModel &m, unsigned i
   }
   // The assembly's matrices: the spatial sets (M, A, M_c, A_c), K and its pattern.
   const double assembly = sets * 4 * 8 * s.nnz_space + 12 * nnz_k + 8 * n_k;
+  if (s.iterative && s.frozen_modes)
+  {
+    // matrix-free K: the spatial sets and the frozen operator's M_c; the frozen
+    // operator's mode factors (with their factorization peak) and the Krylov vectors
+    const ModesMemory lu = predicted_modes_memory(s.n_space, s.degree, t);
+    op.matrices = (sets + 1) * 4 * 8 * s.nnz_space;
+    op.factorizing = lu.peak_mb * MB + 8. * m.krylov_vectors * n_k;
+    op.solving = lu.factors_mb * MB + 8. * m.krylov_vectors * n_k;
+    return op;
+  }
   if (s.iterative)
   {
     op.matrices = assembly;
@@ -204,8 +214,8 @@ SlabSystemSize slab_system(const Space<2> &space, const SlabSolverOptions &optio
   s.nnz_space = space.sparsity().n_nonzero_elements();
   s.degree = space.degree();
   const bool constant = !space.scene.coefficients_depend_on_time();
-  s.iterative = solves_iteratively(options, s.n_space, r + 1, space.degree(),
-                                   options.reuse_factorization && constant);
+  s.iterative = solves_iteratively(options, s.n_space, r + 1, space.degree(), constant);
+  s.frozen_modes = solves_by_frozen_modes(options, s.n_space, r + 1, space.degree(), constant);
   s.modes = solves_by_modes(options, s.n_space, r + 1, space.degree(), constant,
                             options.reuse_factorization && constant);
   return s;
@@ -259,7 +269,8 @@ SlabSystemSize predicted_system(double cells, unsigned int degree,
   s.nnz_space = s.n_space * (degree + 2.) * (degree + 2.);
   s.degree = degree;
   const bool reused = options.reuse_factorization && constant;
-  s.iterative = solves_iteratively(options, s.n_space, r + 1, degree, reused);
+  s.iterative = solves_iteratively(options, s.n_space, r + 1, degree, constant);
+  s.frozen_modes = solves_by_frozen_modes(options, s.n_space, r + 1, degree, constant);
   s.modes = solves_by_modes(options, s.n_space, r + 1, degree, constant, reused);
   return s;
 }

@@ -20,6 +20,8 @@ struct SlabSystemSize
   double nnz_space = 0;   ///< nonzeros of the spatial sparsity pattern
   bool iterative = false; ///< Krylov solver (else UMFPACK)
   bool modes = false;     ///< UMFPACK per temporal mode (solver.type = modes or auto)
+  /// Krylov preconditioned by the frozen operator's modes (preconditioner = modes)
+  bool frozen_modes = false;
   unsigned int degree = 1; ///< FE_Q degree (UMFPACK's predicted peak depends on it)
 };
 
