@@ -243,7 +243,9 @@ std::vector<Entry> solver_entries()
        "(r+1)^2 times those of one N_space LU; UMFPACK on every MPI rank; coefficients "
        "that depend on time are solved by direct instead, with a warning), iterative "
        "(Belos Krylov method solver.krylov with solver.preconditioner, Trilinos), or "
-       "auto: modes for r >= 1 with coefficients constant in time, "
+       "auto: with coefficients that depend on time iterative with preconditioner = modes "
+       "(gmres, tolerance min(solver.tolerance, 1e-13)) while the modes' predicted peak "
+       "fits solver.auto_memory_mb, else as follows; modes for r >= 1 with coefficients constant in time, "
        "solver.reuse_factorization and solver.direct = umfpack while their predicted "
        "peak fits solver.auto_memory_mb; otherwise UMFPACK on the coupled matrix while "
        "its predicted factorization peak fits solver.auto_memory_mb, iterative "
@@ -258,6 +260,13 @@ std::vector<Entry> solver_entries()
        "direct, or modes, also as auto picks it for the space's DoF count), else "
        "downstream. Direct solves are unaffected up to round-off; native is a few "
        "percent faster there."},
+      {"solver", "time_interpolation", "true", m(&S::time_interpolation), boolean,
+       "Coefficients that depend on time: assemble the spatial matrices once per loop at "
+       "4 Chebyshev points of [0, T] (per slab length where delta_K depends on it) and, "
+       "where their cubic interpolant reproduces the matrices assembled at two further "
+       "times to 1e-12 relative (b and alpha polynomial in t of degree <= 3 with the "
+       "SUPG terms), form each temporal quadrature point's matrices from them instead of "
+       "assembling them; otherwise, and with false, every slab assembles its own."},
       {"solver", "reuse_factorization", "true", m(&S::reuse_factorization), boolean,
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
        "unchanged (same tau, coefficients constant in time)."},

@@ -17,6 +17,7 @@
 #include "time/kronecker.h"
 #include "time/temporal_basis.h"
 
+#include <map>
 #include <memory>
 
 namespace anisodwr
@@ -37,6 +38,9 @@ struct SlabTimings
   unsigned long inner_iterations = 0;
   /// preconditioner = modes: factorizations of the frozen operator
   unsigned int n_frozen_factorizations = 0;
+  /// coefficients that depend on time: spatial assemblies, and the temporal quadrature
+  /// points whose matrices were interpolated in time instead (TimeInterpolation)
+  unsigned int n_spatial_assemblies = 0, n_interpolated = 0;
 };
 
 /// Process-wide totals over all SlabOperators (for summary.json).
@@ -135,6 +139,21 @@ private:
     bool stale = true;
   } frozen;
   bool use_frozen = false;
+  /// Coefficients that depend on time: the spatial matrices at the Chebyshev points of
+  /// [0, T] (one set per slab length where delta_K depends on it). Where their
+  /// polynomial interpolant reproduces the assembled matrices at two further times to
+  /// 1e-12 relative (coefficients polynomial in t, as in the manufactured rotating
+  /// field), each temporal quadrature point's matrices are the interpolant's linear
+  /// combination of them instead of an assembly.
+  struct TimeInterpolation
+  {
+    bool exact = false;
+    std::vector<SpatialMatrices> at_nodes;
+  };
+  std::map<double, TimeInterpolation> interpolation;
+  /// The spatial matrices at time t for slabs of length tau_n: interpolated where the
+  /// check passed, else assembled.
+  void matrices_at(double t, double tau_n, SpatialMatrices &m);
   /// Assembles the spatial matrices at t_start + tau_n/2 and factorizes the frozen
   /// operator D (x) Mc + tau Mhat (x) Ac by its temporal modes.
   void freeze(double t_start, double tau_n);
