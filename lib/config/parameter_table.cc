@@ -262,7 +262,8 @@ std::vector<Entry> solver_entries()
        "percent faster there."},
       {"solver", "time_interpolation", "true", m(&S::time_interpolation), boolean,
        "Coefficients that depend on time: assemble the spatial matrices once per loop at "
-       "4 Chebyshev points of [0, T] (per slab length where delta_K depends on it) and, "
+       "4 Chebyshev points of [0, T] (per slab length where delta_K depends on it, for "
+       "the first two slab lengths met) and, "
        "where their cubic interpolant reproduces the matrices assembled at two further "
        "times to 1e-12 relative (b and alpha polynomial in t of degree <= 3 with the "
        "SUPG terms), form each temporal quadrature point's matrices from them instead of "

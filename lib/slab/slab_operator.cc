@@ -245,6 +245,9 @@ void SlabOperator<dim>::assemble_terms(double t_start, double tau_n, bool consta
 namespace
 {
 constexpr unsigned int n_time_nodes = 4;
+/// Slab lengths whose node matrices are kept (each holds n_time_nodes sets of M, A,
+/// M_c, A_c).
+constexpr std::size_t max_time_interpolations = 2;
 
 /// The Chebyshev points of [0, T] (n_time_nodes of them).
 double time_node(unsigned int k, double T)
@@ -318,6 +321,13 @@ void SlabOperator<dim>::matrices_at(double t, double tau_n, SpatialMatrices &m)
     return;
   }
   auto it = interpolation.find(key);
+  if (it == interpolation.end() && interpolation.size() >= max_time_interpolations)
+  {
+    // memory: at most two slab lengths keep their node matrices; others assemble
+    space.assemble_matrices(t, tau_n, m);
+    ++time.n_spatial_assemblies;
+    return;
+  }
   if (it == interpolation.end())
   {
     TimeInterpolation ti;

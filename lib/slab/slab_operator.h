@@ -140,7 +140,8 @@ private:
   } frozen;
   bool use_frozen = false;
   /// Coefficients that depend on time: the spatial matrices at the Chebyshev points of
-  /// [0, T] (one set per slab length where delta_K depends on it). Where their
+  /// [0, T] (one set per slab length where delta_K depends on it, for at most two slab
+  /// lengths: the slabs of any other length assemble their own). Where their
   /// polynomial interpolant reproduces the assembled matrices at two further times to
   /// 1e-12 relative (coefficients polynomial in t, as in the manufactured rotating
   /// field), each temporal quadrature point's matrices are the interpolant's linear
