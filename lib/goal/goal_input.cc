@@ -186,13 +186,17 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
   return goals;
 }
 
-bool goal_weight_resolved(const Space<2> &space, const GoalSpec &goal,
-                          const Scene<2> &scene, double &w)
+double goal_of_one(const Space<2> &space, const GoalSpec &goal)
 {
   Vector<double> j;
   assemble_goal_vector(space, goal, j);
-  // the shape functions sum to 1
-  w = std::accumulate(j.begin(), j.end(), 0.);
+  return std::accumulate(j.begin(), j.end(), 0.);
+}
+
+bool goal_weight_resolved(const Space<2> &space, const GoalSpec &goal,
+                          const Scene<2> &scene, double &w)
+{
+  w = goal_of_one(space, goal);
   return goal_type(goal.kind).weight_accepted(goal, scene, w);
 }
 

@@ -105,8 +105,11 @@ std::string goal_kind_doc();
 /// The documentation of goal.locations, from the kinds' syntax.
 std::string goal_locations_doc();
 
-/// The integral of the goal's weight function by its quadrature on the mesh of
-/// `space` (in w), and whether the goal's kind accepts it.
+/// J(1) of the goal's spatial part, j(1) = the sum of its goal vector (the shape
+/// functions sum to 1): the integral of its weight function by its quadrature on the
+/// mesh of `space`.
+double goal_of_one(const Space<2> &space, const GoalSpec &g);
+/// goal_of_one (in w), and whether the goal's kind accepts it.
 bool goal_weight_resolved(const Space<2> &space, const GoalSpec &g,
                           const Scene<2> &scene, double &w);
 /// v with 6 significant digits (for messages).

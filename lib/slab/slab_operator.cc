@@ -9,7 +9,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -242,127 +241,6 @@ void SlabOperator<dim>::assemble_terms(double t_start, double tau_n, bool consta
   }
 }
 
-namespace
-{
-constexpr unsigned int n_time_nodes = 4;
-/// Slab lengths whose node matrices are kept (each holds n_time_nodes sets of M, A,
-/// M_c, A_c).
-constexpr std::size_t max_time_interpolations = 2;
-
-/// The Chebyshev points of [0, T] (n_time_nodes of them).
-double time_node(unsigned int k, double T)
-{
-  return 0.5 * T * (1. - std::cos((2. * k + 1.) * M_PI / (2. * n_time_nodes)));
-}
-
-/// m := sum_k l_k(t) at_nodes[k] (l_k the Lagrange polynomials of the time nodes).
-void interpolate(const std::vector<SpatialMatrices> &at_nodes, double t, double T,
-                 SpatialMatrices &m)
-{
-  std::vector<double> l(n_time_nodes, 1.);
-  for (unsigned int k = 0; k < n_time_nodes; ++k)
-    for (unsigned int j = 0; j < n_time_nodes; ++j)
-      if (j != k)
-        l[k] *= (t - time_node(j, T)) / (time_node(k, T) - time_node(j, T));
-  const auto parts = [](SpatialMatrices &x)
-  { return std::array<SparseMatrix<double> *, 4>{{&x.M, &x.A, &x.Mc, &x.Ac}}; };
-  const auto from = [](const SpatialMatrices &x)
-  { return std::array<const SparseMatrix<double> *, 4>{{&x.M, &x.A, &x.Mc, &x.Ac}}; };
-  const auto out = parts(m);
-  for (unsigned int p = 0; p < 4; ++p)
-  {
-    out[p]->reinit(from(at_nodes[0])[p]->get_sparsity_pattern());
-    for (unsigned int k = 0; k < n_time_nodes; ++k)
-      out[p]->add(l[k], *from(at_nodes[k])[p]);
-  }
-}
-
-/// The rows of constrained DoFs in M_c and A_c hold only a diagonal entry, which the
-/// assembly sets from the cell matrices' absolute values (not polynomial in t); it does
-/// not couple to the other DoFs. Sets it to ref's, in both.
-void constrained_diagonal(const AffineConstraints<double> &constraints,
-                          const SpatialMatrices &ref, SpatialMatrices &m)
-{
-  for (types::global_dof_index i = 0; i < m.Mc.m(); ++i)
-    if (constraints.is_constrained(i))
-    {
-      m.Mc.set(i, i, ref.Mc(i, i));
-      m.Ac.set(i, i, ref.Ac(i, i));
-    }
-}
-
-/// True if a and b agree to 1e-12 relative in each of M, A, M_c, A_c (Frobenius norm);
-/// b is overwritten by b - a.
-bool agree(const SpatialMatrices &a, SpatialMatrices &b)
-{
-  for (const auto &[x, y] : {std::pair{&a.M, &b.M}, std::pair{&a.A, &b.A},
-                             std::pair{&a.Mc, &b.Mc}, std::pair{&a.Ac, &b.Ac}})
-  {
-    const double norm = x->frobenius_norm();
-    y->add(-1., *x);
-    if (!(y->frobenius_norm() <= 1e-12 * norm))
-      return false;
-  }
-  return true;
-}
-} // namespace
-
-template <int dim>
-void SlabOperator<dim>::matrices_at(double t, double tau_n, SpatialMatrices &m)
-{
-  const double T = space.scene.end_time;
-  // one set for all slab lengths unless delta_K depends on tau (keys rounded so that
-  // equal lengths computed as differences share one)
-  const double key = space.delta_depends_on_tau() ? std::round(tau_n / T * 1e12) : -1.;
-  if (!opt.time_interpolation)
-  {
-    space.assemble_matrices(t, tau_n, m);
-    ++time.n_spatial_assemblies;
-    return;
-  }
-  auto it = interpolation.find(key);
-  if (it == interpolation.end() && interpolation.size() >= max_time_interpolations)
-  {
-    // memory: at most two slab lengths keep their node matrices; others assemble
-    space.assemble_matrices(t, tau_n, m);
-    ++time.n_spatial_assemblies;
-    return;
-  }
-  if (it == interpolation.end())
-  {
-    TimeInterpolation ti;
-    ti.at_nodes.resize(n_time_nodes);
-    for (unsigned int k = 0; k < n_time_nodes; ++k)
-      space.assemble_matrices(time_node(k, T), tau_n, ti.at_nodes[k]);
-    time.n_spatial_assemblies += n_time_nodes;
-    ti.exact = true;
-    for (const double check : {0.3819660112501051 * T, 0.8541019662496845 * T})
-    {
-      SpatialMatrices assembled, interpolated;
-      space.assemble_matrices(check, tau_n, assembled);
-      ++time.n_spatial_assemblies;
-      constrained_diagonal(space.constraints(), ti.at_nodes[0], assembled);
-      interpolate(ti.at_nodes, check, T, interpolated);
-      constrained_diagonal(space.constraints(), ti.at_nodes[0], interpolated);
-      ti.exact = ti.exact && agree(assembled, interpolated);
-    }
-    if (!ti.exact)
-      ti.at_nodes.clear();
-    it = interpolation.emplace(key, std::move(ti)).first;
-  }
-  if (it->second.exact)
-  {
-    interpolate(it->second.at_nodes, t, T, m);
-    constrained_diagonal(space.constraints(), it->second.at_nodes[0], m);
-    ++time.n_interpolated;
-  }
-  else
-  {
-    space.assemble_matrices(t, tau_n, m);
-    ++time.n_spatial_assemblies;
-  }
-}
-
 template <int dim>
 void SlabOperator<dim>::prepare(double t_start, double tau_n)
 {
@@ -396,8 +274,7 @@ void SlabOperator<dim>::prepare(double t_start, double tau_n)
     if (opt.type == SolverType::modes && !constant)
       warn_modes_time_dependent();
   }
-  use_frozen = use_iterative && it_opt.preconditioner == Preconditioner::modes;
-  if (use_frozen &&
+  if (frozen_modes() &&
       (frozen.stale || !frozen.lu.factorized() ||
        std::abs(frozen.tau - tau_n) > 1e-12 * tau_n ||
        frozen.max_iterations > it_opt.refactor_iterations))
@@ -578,7 +455,7 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
     matrix.terms = &terms_cond;
     matrix.m = basis.n_dofs();
     matrix.split = &kron;
-    matrix.modes = use_frozen ? &frozen.lu : nullptr;
+    matrix.modes = frozen_modes() ? &frozen.lu : nullptr;
     solver->setup(matrix, transpose);
     krylov[d] = std::move(solver);
     setup_time = timer.wall_time();
@@ -600,16 +477,16 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
     totals.krylov_iterations += stats.iterations;
     totals.max_krylov_iterations =
         std::max<unsigned long>(totals.max_krylov_iterations, stats.iterations);
-    if (use_frozen)
+    if (frozen_modes())
       frozen.max_iterations = std::max(frozen.max_iterations, stats.iterations);
   }
   catch (const KrylovFailure &e)
   {
-    if (use_frozen)
+    if (frozen_modes())
       frozen.stale = true; // the next slab refactorizes
     if (opt.fallback != Fallback::direct)
       throw;
-    if (use_frozen)
+    if (frozen_modes())
       on_output_rank(
           [&]()
           {

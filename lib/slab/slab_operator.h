@@ -94,7 +94,10 @@ public:
   bool iterative() const { return use_iterative; }
   /// True if the last prepare() chose the Krylov solve preconditioned by the frozen
   /// operator's mode solver (solver.preconditioner = modes, or auto).
-  bool frozen_modes() const { return use_frozen; }
+  bool frozen_modes() const
+  {
+    return use_iterative && it_opt.preconditioner == Preconditioner::modes;
+  }
   /// True if the last prepare() chose the mode solver.
   bool modes() const { return use_modes; }
   /// The mode solver (its Schur form and factor sizes; empty unless modes()).
@@ -138,7 +141,6 @@ private:
     unsigned int max_iterations = 0;
     bool stale = true;
   } frozen;
-  bool use_frozen = false;
   /// Coefficients that depend on time: the spatial matrices at the Chebyshev points of
   /// [0, T] (one set per slab length where delta_K depends on it, for at most two slab
   /// lengths: the slabs of any other length assemble their own). Where their
@@ -148,7 +150,7 @@ private:
   /// combination of them instead of an assembly.
   struct TimeInterpolation
   {
-    bool exact = false;
+    /// empty where the interpolant is not exact
     std::vector<SpatialMatrices> at_nodes;
   };
   std::map<double, TimeInterpolation> interpolation;

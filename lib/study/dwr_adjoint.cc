@@ -11,7 +11,6 @@
 
 #include <cmath>
 #include <iomanip>
-#include <numeric>
 #include <iostream>
 #include <sstream>
 
@@ -123,9 +122,7 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
     add_goal_estimate(row, part);
     if (estimate_weights)
     {
-      Vector<double> j;
-      assemble_goal_vector(primal, unweighted(goals[i]), j);
-      const double one = std::accumulate(j.begin(), j.end(), 0.) *
+      const double one = goal_of_one(primal, unweighted(goals[i])) *
                          (goals[i].over_time ? scene->end_time : 1.);
       goals[i].weight = signed_goal_weight(
           row.eta_goal[i],
