@@ -90,4 +90,28 @@ print("hartmann eta_h_data", data[0], "->", data[-1], "mean error", err[-2:],
       "ok" if ok else "FAILED")
 sys.exit(0 if ok else 1)
 PY
+# 5. u = x y with b = 0, alpha = 0, f = 0: the data check accepts the exact solution
+# (its PDE residual is pure round-off), and the flux goal on x = 1 next to Neumann data
+# given per boundary id is exact to round-off: int_I int_{x=1} eps d_x u = eps T / 2 = 0.5
+cat >"$tmp/xy.json" <<'JSON'
+{"scene": {"name": "custom", "epsilon": 1, "end_time": 1,
+   "grid": "hyper_rectangle", "grid_arguments": "0, 0 : 1, 1 : true",
+   "convection": "0; 0", "reaction": "0", "rhs": "0",
+   "exact_solution": "x*y", "initial_value": "x*y",
+   "dirichlet": "0, 1: x*y", "neumann": "2: -eps*x; 3: eps*x",
+   "goals": "right = flux 1", "goals_over_time": true},
+ "discretization": {"p": 1, "r": 0, "initial_refinements": 2, "n_slabs": 2},
+ "study": {"mode": "dwr"}, "goal": {"kind": "scene"}, "adaptivity": {"loops": 1},
+ "output": {"vtu_loops": 0, "progress": false}}
+JSON
+expect 0 "results:" -- run "$tmp/xy.json" --output "$tmp/xy"
+/usr/bin/python3 - "$tmp/xy" <<'PY' || fail=1
+import csv, sys
+row = list(csv.DictReader(open(sys.argv[1] + "/loops.csv")))[-1]
+J = float(list(csv.DictReader(open(sys.argv[1] + "/probes.csv")))[-1]["J_right"])
+err = float(row["J_error"])
+print("flux goal beside per-id Neumann data: J", J, "(exact 0.5), relative error", err)
+if not (abs(J - 0.5) < 1e-10 and err < 1e-10):
+    sys.exit("FAIL: the flux goal is %.12g with the error %g; expected 0.5" % (J, err))
+PY
 exit $fail

@@ -161,6 +161,76 @@ check "scene.goals" -- "$mesh" --set "scene.goals=line 0, 0"
 check "scene.rhs" -- "$example" --set "scene.rhs=exp(-t)"
 check "scene.neumann" -- "$example" --set "scene.neumann=2, 3: 0"
 check "scene.initial_value" -- "$example" --set "scene.initial_value=1"
+# broken Gmsh files (format 2.2): msh NAME NODES ELEMENTS writes $tmp/NAME.msh; each
+# node line "tag x y", each element line "type tag nodes..." (1 line, 2 triangle, 3 quad)
+msh() {
+  local f=$tmp/$1.msh n e
+  n=$(grep -c . <<<"$2")
+  e=$(grep -c . <<<"$3")
+  {
+    printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%s\n' "$n"
+    awk '{print $1, $2, $3, 0}' <<<"$2"
+    printf '$EndNodes\n$Elements\n%s\n' "$e"
+    awk '{printf "%d %d 2 %d %d", NR, $1, $2, $2; for (i = 3; i <= NF; ++i) printf " %s", $i; print ""}' <<<"$3"
+    printf '$EndElements\n'
+  } >"$f"
+  echo "$f"
+}
+square="1 0 0
+2 1 0
+3 1 1
+4 0 1"
+two="1 0 0
+2 1 0
+3 2 0
+4 0 1
+5 1 1
+6 2 1"
+# a problem that runs on any of these meshes (all boundary faces have id 0)
+onmesh=$tmp/onmesh.json
+cat >"$onmesh" <<'JSON'
+{"scene": {"name": "custom", "epsilon": 0.01, "end_time": 1, "mesh_file": "none.msh",
+   "convection": "1; 0", "reaction": "0", "rhs": "1", "initial_value": "0",
+   "dirichlet": "0: 0", "goals": "point 0.5, 0.5", "goals_over_time": true},
+ "discretization": {"p": 1, "r": 0, "initial_refinements": 1, "n_slabs": 2},
+ "study": {"mode": "dwr"}, "goal": {"kind": "scene"}, "output": {"progress": false}}
+JSON
+mesh=$onmesh
+check "cells that are not quadrilaterals (triangles)" -- "$mesh" --set "scene.mesh_file=$(msh tri "$square" "2 10 1 2 3
+2 10 1 3 4")"
+check "cells that are not quadrilaterals (triangles)" -- "$mesh" --set "scene.mesh_file=$(msh mixed "$two" "3 10 1 2 5 4
+2 10 2 3 6
+2 10 2 6 5")"
+# a crack: the right cell has its own nodes 7, 8 at the points of 2 and 5
+check "has two nodes at the point (1, 0)" -- "$mesh" --set "scene.mesh_file=$(msh crack "$two
+7 1 0
+8 1 1" "3 10 1 2 5 4
+3 10 7 3 6 8")"
+# a hanging coarse node: node 7 = (1, 0.5) in the left edge of the two right cells only
+check "inside the boundary edge from (1, 0) to (1, 1)" -- "$mesh" --set "scene.mesh_file=$(msh hanging "$two
+7 1 0.5
+8 2 0.5" "3 10 1 2 5 4
+3 10 2 3 8 7
+3 10 7 8 6 5")"
+check "the node 2 is defined twice" -- "$mesh" --set "scene.mesh_file=$(msh twice "$two
+2 1.5 0" "3 10 1 2 5 4
+3 10 2 3 6 5")"
+# a bow-tie (nodes 3 and 4 swapped) and a cell of zero area (all nodes on a line)
+check "has zero area, crossed edges or the wrong orientation" -- "$mesh" --set "scene.mesh_file=$(msh bowtie "$square" "3 10 1 2 4 3")"
+check "has zero area, crossed edges or the wrong orientation" -- "$mesh" --set "scene.mesh_file=$(msh flat "1 0 0
+2 1 0
+3 2 0
+4 3 0" "3 10 1 2 3 4")"
+mesh=$src/config/custom_mesh.json
+# (deal.II's debug build refuses the radii itself)
+check "scene.grid" -- "$example" --set scene.grid=hyper_shell --set "scene.grid_arguments=0, 0 : 2 : 1 : 8 : true"
+# goal names: twice, given or default (the columns of loops.csv and probes.csv)
+check "goal name 'a' appears twice in key 'scene.goals'" -- "$mesh" \
+  --set "scene.goals=a = point 2, 0.5; a = point 2.5, 0.5"
+check "goal name 'point_2' appears twice in key 'scene.goals'" -- "$mesh" \
+  --set "scene.goals=point_2 = point 2, 0.5; point 2.5, 0.5"
+check "goal name 'a' appears twice in key 'goal.locations'" -- "$cfg" --set goal.kind=point \
+  --set "goal.locations=a = 0.5, 0.5; a = 0.6, 0.6"
 echo "$count bad inputs checked"
 [ "$count" -ge 100 ] || { echo "FAIL: corpus smaller than 100"; fail=1; }
 exit $fail

@@ -292,7 +292,8 @@ double FluxGoal::offset(const Space<2> &space, const GoalSpec &g) const
         const Point<2> x = a + s * (b - a);
         double gN = 0;
         for (unsigned int i = 0; i < qt.size(); ++i)
-          gN += qt.weight(i) * T * scene.neumann_value(x, normal, qt.point(i)[0] * T);
+          gN += qt.weight(i) * T *
+                scene.boundary_flux(x, normal, qt.point(i)[0] * T, face->boundary_id());
         c -= gN * psi * qf.weight(k) * a.distance(b);
       }
     }

@@ -95,6 +95,18 @@ void set_references(const GoalInput &in, const Scene<2> &scene,
 }
 } // namespace
 
+void check_goal_names(const std::vector<GoalSpec> &goals, const std::string &key,
+                      const std::string &where)
+{
+  for (std::size_t i = 0; i < goals.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (goals[i].name == goals[j].name)
+        throw InputError(where + ": goal name '" + goals[i].name + "' appears twice in key '" +
+                         key + "' (goals " + std::to_string(j + 1) + " and " +
+                         std::to_string(i + 1) +
+                         "); expected distinct names (an unnamed goal i is <kind>_i)");
+}
+
 GoalSpec parse_goal_item(const std::string &text, std::size_t i, const GoalSpec &defaults,
                          const std::string &key, const std::string &where,
                          const Scene<2> &scene)
@@ -158,6 +170,7 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
     defaults.radius = in.radius;
     for (std::size_t i = 0; i < items.size(); ++i)
       goals.push_back(parse_goal_item(items[i], i, defaults, "goal.locations", where, scene));
+    check_goal_names(goals, "goal.locations", where);
   }
   // a mollifier wider than the domain is no point goal (and makes J a domain mean)
   const auto box = scene.bounding_box();

@@ -10,6 +10,12 @@
 namespace anisodwr
 {
 
+/// InputError "<where>: goal name '<name>' appears twice in key '<key>'; ..." if two
+/// goals of a list (goal.locations, scene.goals) have one name (given, or the default
+/// "<kind>_<i + 1>"): the names are the goals' columns in loops.csv and probes.csv.
+void check_goal_names(const std::vector<GoalSpec> &goals, const std::string &key,
+                      const std::string &where);
+
 /// One goal of a list of goals (goal.locations, scene.goals), number i + 1:
 /// "[name =] [kind] numbers" with a registered kind (GoalType), that of `defaults` where
 /// it is omitted (an empty one: it must be given), and the name "<kind>_<i + 1>" where

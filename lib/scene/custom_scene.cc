@@ -4,6 +4,7 @@
 #include "base/text.h"
 #include "goal/goal_input.h"
 #include "goal/goal_type.h"
+#include "scene/mesh_check.h"
 #include "scene/mesh_manifolds.h"
 #include "scene/separable.h"
 
@@ -197,6 +198,9 @@ void CustomScene::Geometry::read_mesh(const SceneOptions &o, std::string &domain
   if (!in)
     throw InputError(bad + "cannot read the file '" + path.string() +
                      "'; expected a Gmsh .msh file");
+  check_msh_node_tags(in, bad + "'" + path.string() + "': ");
+  in.clear();
+  in.seekg(0);
   try
   {
     GridIn<2> grid_in;
@@ -247,6 +251,8 @@ void CustomScene::Geometry::build(const SceneOptions &o, std::string &domain)
     throw InputError(
         o.source(trim_ws(o.custom.mesh_file).empty() ? "scene.grid" : "scene.mesh_file") +
         ": the domain " + domain + " has no cells");
+  const std::string key = trim_ws(o.custom.mesh_file).empty() ? "scene.grid" : "scene.mesh_file";
+  check_coarse_mesh(coarse, o.source(key) + ": key '" + key + "': ", domain);
   for (const auto &face : coarse.active_face_iterators())
     if (face->at_boundary())
       ids.insert(face->boundary_id());
@@ -409,6 +415,7 @@ void CustomScene::read_goals(const SceneOptions &o)
   const auto items = split_ws(text, ';');
   for (std::size_t i = 0; i < items.size(); ++i)
     goals.push_back(parse_goal_item(items[i], i, defaults, key, o.source(key), *this));
+  check_goal_names(goals, key, o.source(key));
 }
 
 void CustomScene::make_coarse_grid(Triangulation<2, 2> &tria) const

@@ -1,0 +1,187 @@
+#include "scene/mesh_check.h"
+
+#include "base/errors.h"
+
+#include <deal.II/grid/tria_accessor.h>
+#include <deal.II/grid/tria_iterator.h>
+
+#include <algorithm>
+#include <array>
+#include <numeric>
+#include <set>
+#include <sstream>
+#include <vector>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+namespace
+{
+std::string point(const Point<2> &p)
+{
+  std::ostringstream s;
+  s.precision(8);
+  s << "(" << p[0] << ", " << p[1] << ")";
+  return s.str();
+}
+
+double cross(const Tensor<1, 2> &a, const Tensor<1, 2> &b)
+{
+  return a[0] * b[1] - a[1] * b[0];
+}
+} // namespace
+
+void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
+                       const std::string &domain)
+{
+  const std::string head = prefix + "the domain " + domain;
+  unsigned int other = 0;
+  for (const auto &cell : tria.active_cell_iterators())
+    if (!cell->reference_cell().is_hyper_cube())
+      ++other;
+  if (other > 0)
+    throw InputError(head + " has " + std::to_string(other) + " of its " +
+                     std::to_string(tria.n_active_cells()) +
+                     " cells that are not quadrilaterals (triangles); expected "
+                     "quadrilaterals only (Gmsh: 'Recombine Surface' in the .geo file, or "
+                     "Mesh.RecombineAll = 1 and Mesh.Algorithm = 8)");
+
+  const auto &vertices = tria.get_vertices();
+  const auto &used = tria.get_used_vertices();
+  std::vector<unsigned int> ids;
+  for (unsigned int v = 0; v < vertices.size(); ++v)
+    if (used[v])
+      ids.push_back(v);
+  if (ids.empty())
+    return;
+  Point<2> lo = vertices[ids[0]], hi = lo;
+  for (const unsigned int v : ids)
+    for (unsigned int d = 0; d < 2; ++d)
+    {
+      lo[d] = std::min(lo[d], vertices[v][d]);
+      hi[d] = std::max(hi[d], vertices[v][d]);
+    }
+  const double tol = 1e-12 * lo.distance(hi);
+
+  // two vertices at one point
+  std::sort(ids.begin(), ids.end(),
+            [&](unsigned int a, unsigned int b) { return vertices[a][0] < vertices[b][0]; });
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    for (std::size_t j = i + 1;
+         j < ids.size() && vertices[ids[j]][0] - vertices[ids[i]][0] <= tol; ++j)
+      if (vertices[ids[i]].distance(vertices[ids[j]]) <= tol)
+        throw InputError(head + " has two nodes at the point " + point(vertices[ids[i]]) +
+                         " that its cells do not share (a crack: the interface between "
+                         "the cells becomes boundary); expected each point once");
+
+  // cells with a degenerate or inverted corner (deal.II's vertex order is 0, 1, 3, 2
+  // counter-clockwise)
+  static constexpr std::array<std::array<unsigned int, 3>, 4> corners{
+      {{{0, 1, 2}}, {{1, 3, 0}}, {{3, 2, 1}}, {{2, 0, 3}}}};
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const auto &c : corners)
+    {
+      const Tensor<1, 2> a = cell->vertex(c[1]) - cell->vertex(c[0]),
+                         b = cell->vertex(c[2]) - cell->vertex(c[0]);
+      if (!(cross(a, b) > 1e-10 * a.norm() * b.norm()))
+        throw InputError(head + ": its cell " + std::to_string(cell->index()) +
+                         " with the vertices " + point(cell->vertex(0)) + ", " +
+                         point(cell->vertex(1)) + ", " + point(cell->vertex(3)) + ", " +
+                         point(cell->vertex(2)) + " has zero area, crossed edges or the "
+                         "wrong orientation at its corner " + point(cell->vertex(c[0])) +
+                         "; expected convex cells with positive area");
+    }
+
+  // a vertex inside a boundary face: a hanging coarse node
+  std::vector<std::array<unsigned int, 2>> faces;
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const auto &face : cell->face_iterators())
+      if (face->at_boundary())
+        faces.push_back({{face->vertex_index(0), face->vertex_index(1)}});
+  for (const auto &f : faces)
+  {
+    const Point<2> &a = vertices[f[0]], &b = vertices[f[1]];
+    const Tensor<1, 2> e = b - a;
+    const double l2 = e.norm_square();
+    const double x0 = std::min(a[0], b[0]) - tol, x1 = std::max(a[0], b[0]) + tol;
+    auto first = std::lower_bound(ids.begin(), ids.end(), x0,
+                                  [&](unsigned int v, double x) { return vertices[v][0] < x; });
+    for (auto it = first; it != ids.end() && vertices[*it][0] <= x1; ++it)
+    {
+      const unsigned int v = *it;
+      if (v == f[0] || v == f[1])
+        continue;
+      const double s = (vertices[v] - a) * e / l2;
+      if (s <= 0. || s >= 1.)
+        continue;
+      if (std::abs(cross(e, vertices[v] - a)) / std::sqrt(l2) <= tol)
+        throw InputError(head + " has the node " + point(vertices[v]) +
+                         " inside the boundary edge from " + point(a) + " to " + point(b) +
+                         " (a hanging coarse node: the cells on the two sides do not "
+                         "share their edge); expected a conforming mesh");
+    }
+  }
+}
+
+void check_msh_node_tags(std::istream &in, const std::string &prefix)
+{
+  std::string line;
+  double version = 0;
+  while (std::getline(in, line))
+  {
+    if (line.rfind("$MeshFormat", 0) == 0)
+    {
+      int binary = 0;
+      in >> version >> binary;
+      if (binary != 0)
+        return;
+    }
+    if (line.rfind("$Nodes", 0) == 0)
+      break;
+  }
+  if (!in)
+    return;
+  std::set<long long> tags;
+  auto add = [&](long long tag)
+  {
+    if (!tags.insert(tag).second)
+      throw InputError(prefix + "the node " + std::to_string(tag) +
+                       " is defined twice in $Nodes; expected each node tag once");
+  };
+  if (version < 4)
+  {
+    long long n = 0;
+    in >> n;
+    for (long long i = 0; i < n && in; ++i)
+    {
+      long long tag;
+      double x, y, z;
+      in >> tag >> x >> y >> z;
+      if (in)
+        add(tag);
+    }
+    return;
+  }
+  long long blocks = 0, n = 0, min_tag, max_tag;
+  in >> blocks >> n >> min_tag >> max_tag;
+  for (long long b = 0; b < blocks && in; ++b)
+  {
+    long long dim, entity, parametric, count;
+    in >> dim >> entity >> parametric >> count;
+    std::vector<long long> block(std::max(0LL, count));
+    for (auto &t : block)
+      in >> t;
+    for (const long long t : block)
+      if (in)
+        add(t);
+    for (long long i = 0; i < count && in; ++i)
+    {
+      double x, y, z;
+      in >> x >> y >> z;
+      for (long long p = 0; p < (parametric ? dim : 0); ++p)
+        in >> x;
+    }
+  }
+}
+} // namespace anisodwr

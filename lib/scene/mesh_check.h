@@ -1,0 +1,30 @@
+#pragma once
+// Checks of a user's coarse mesh (a Gmsh file or a generator) before anything uses it:
+// a mesh deal.II reads without complaint can still be no domain the solver can work
+// on (triangles, cracks, hanging coarse nodes, zero-area or inverted cells, a node
+// defined twice). Each check throws InputError naming the mesh and the offending
+// cell, node or point.
+#include <deal.II/grid/tria.h>
+
+#include <istream>
+#include <string>
+
+namespace anisodwr
+{
+/// Throws InputError("<prefix>the domain <domain> ...") where `tria`
+/// - has a cell that is not a quadrilateral;
+/// - has two vertices at one point (a crack: the cells on either side do not share
+///   them, so the interface becomes boundary);
+/// - has a vertex inside a boundary face of another cell (a hanging coarse node: the
+///   coarse mesh must be conforming);
+/// - has a cell with a corner whose two edges do not turn counter-clockwise by more than
+///   1e-10 of their lengths' product (zero area, a bow-tie, an inverted cell).
+/// Points are compared to 1e-12 of the mesh's diameter.
+void check_coarse_mesh(const dealii::Triangulation<2> &tria, const std::string &prefix,
+                       const std::string &domain);
+
+/// Throws InputError(prefix + ...) naming the tag if a node tag of the Gmsh file `in`
+/// (ASCII format 2 or 4) is defined twice (deal.II keeps the last definition). Reads
+/// `in` to its end; binary files and files without a $Nodes section pass.
+void check_msh_node_tags(std::istream &in, const std::string &prefix);
+} // namespace anisodwr
