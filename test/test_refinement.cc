@@ -1,14 +1,18 @@
 // Marking and mesh closure: the cell marking cuts each marked cell only in the
 // directions it needs, the statistics count what was flagged, and the closure of a
 // hanging-node chain on an anisotropic mesh refines the coarser cell only in the
-// direction the chain needs.
+// direction the chain needs; cells where u_h leaves its bounds are halved along b.
 #include "adaptivity/refinement.h"
 
+#include <deal.II/dofs/dof_accessor.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <iostream>
 
 using namespace dealii;
@@ -257,4 +261,101 @@ TEST(Closure, HangingGapIsTheSagittaOverTheFineCellThickness)
   shell.begin_active()->set_refine_flag();
   shell.execute_coarsening_and_refinement();
   EXPECT_NEAR(max_hanging_gap(shell), 1.5 * (1. - std::cos(M_PI / 8.)) / 0.25, 1e-12);
+}
+
+// adaptivity.bound_refinement: the cells around a nodal value outside the bounds are
+// halved along b, and only where they are long along b
+namespace
+{
+struct OutOfBounds
+{
+  Triangulation<2> tria;
+  FE_Q<2> fe{1};
+  DoFHandler<2> dofs;
+  Vector<double> u;
+  OutOfBounds()
+  {
+    // 2 x 8 cells of 1 x 1/16 on [0, 2] x [0, 1/2]: 16 times longer in x than in y
+    GridGenerator::subdivided_hyper_rectangle(tria, {2, 8}, Point<2>(0, 0),
+                                              Point<2>(2, 0.5));
+    dofs.reinit(tria);
+    dofs.distribute_dofs(fe);
+    u.reinit(dofs.n_dofs());
+    u = 0.5;
+  }
+  /// sets u = value at the vertex nearest to p; returns the number of cells around it
+  unsigned int set(const Point<2> &p, double value)
+  {
+    unsigned int around = 0;
+    for (const auto &cell : dofs.active_cell_iterators())
+      for (unsigned int v = 0; v < 4; ++v)
+        if (cell->vertex(v).distance(p) < 1e-12)
+        {
+          u[cell->vertex_dof_index(v, 0)] = value;
+          ++around;
+        }
+    return around;
+  }
+  std::vector<unsigned char> cuts(const Tensor<1, 2> &b) const
+  {
+    return cells_out_of_bounds<2>(dofs, {u}, 0., 1., 0.05, 10.,
+                                  [b](const Point<2> &) { return b; });
+  }
+};
+unsigned int count(const std::vector<unsigned char> &c, unsigned char value)
+{
+  return std::count(c.begin(), c.end(), value);
+}
+} // namespace
+
+TEST(BoundRefinement, CellsAroundAnUndershootAreHalvedAlongB)
+{
+  OutOfBounds m;
+  const unsigned int around = m.set(Point<2>(1, 0.25), -0.2);
+  ASSERT_EQ(around, 4u);
+  const auto cuts = m.cuts(Tensor<1, 2>({1., 0.1}));
+  EXPECT_EQ(count(cuts, 1), 4u); // axis 0 (x) + 1
+  EXPECT_EQ(count(cuts, 0), m.tria.n_active_cells() - 4);
+  const unsigned int before = m.tria.n_active_cells();
+  EXPECT_EQ(add_cuts(m.tria, cuts), 4u);
+  for (const auto &cell : m.tria.active_cell_iterators())
+  {
+    if (cell->refine_flag_set())
+    {
+      EXPECT_EQ(cell->refine_flag_set(), RefinementCase<2>::cut_x);
+    }
+  }
+  m.tria.execute_coarsening_and_refinement();
+  EXPECT_EQ(m.tria.n_active_cells(), before + 4);
+}
+
+TEST(BoundRefinement, NothingWithinTheThresholdOrOnCellsShortAlongB)
+{
+  OutOfBounds m;
+  m.set(Point<2>(1, 0.25), -0.04); // within 0.05 (u_max - u_min)
+  m.set(Point<2>(0, 0.5), 1.04);
+  EXPECT_EQ(count(m.cuts(Tensor<1, 2>({1., 0.})), 0), m.tria.n_active_cells());
+  m.set(Point<2>(1, 0.25), 1.5);
+  // b across the long side: the cells are 16 times shorter along b than across
+  EXPECT_EQ(count(m.cuts(Tensor<1, 2>({0., 1.})), 0), m.tria.n_active_cells());
+}
+
+TEST(BoundRefinement, AFlagSetByTheMarkingGetsTheUnionOfBothCuts)
+{
+  OutOfBounds m;
+  m.set(Point<2>(2, 0.5), -1.);
+  const auto cuts = m.cuts(Tensor<1, 2>({1., 0.}));
+  ASSERT_EQ(count(cuts, 1), 1u);
+  for (const auto &cell : m.tria.active_cell_iterators())
+    if (cuts[cell->active_cell_index()])
+      cell->set_refine_flag(RefinementCase<2>::cut_y);
+  EXPECT_EQ(add_cuts(m.tria, cuts), 1u);
+  for (const auto &cell : m.tria.active_cell_iterators())
+  {
+    if (cuts[cell->active_cell_index()])
+    {
+      EXPECT_EQ(cell->refine_flag_set(), RefinementCase<2>::cut_xy);
+    }
+  }
+  EXPECT_EQ(add_cuts(m.tria, cuts), 0u); // nothing left to add
 }

@@ -1,6 +1,7 @@
 #include "adaptivity/refinement.h"
 
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_accessor.h>
 #include <deal.II/fe/fe_nothing.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/tria_accessor.h>
@@ -237,6 +238,71 @@ template <int dim> double max_hanging_gap(const Triangulation<dim> &tria)
   return worst;
 }
 
+template <int dim>
+std::vector<unsigned char>
+cells_out_of_bounds(const DoFHandler<dim> &dofs, const std::vector<Vector<double>> &u,
+                    double u_min, double u_max, double threshold, double min_aspect,
+                    const std::function<Tensor<1, dim>(const Point<dim> &)> &b)
+{
+  const auto &tria = dofs.get_triangulation();
+  std::vector<unsigned char> cuts(tria.n_active_cells(), 0);
+  std::vector<types::global_dof_index> idx(dofs.get_fe().n_dofs_per_cell());
+  for (const auto &cell : dofs.active_cell_iterators())
+  {
+    cell->get_dof_indices(idx);
+    bool out = false;
+    for (const auto &v : u)
+      for (const auto i : idx)
+        out = out || v[i] < u_min - threshold || v[i] > u_max + threshold;
+    if (!out)
+      continue;
+    const Tensor<1, dim> beta = b(cell->center());
+    unsigned int axis = 0;
+    double best = -1., shortest = 1e300;
+    for (unsigned int d = 0; d < dim; ++d)
+    {
+      // the cell's local axis d: from vertex 0 to the vertex 2^d
+      const Tensor<1, dim> e = cell->vertex(1u << d) - cell->vertex(0);
+      const double c = std::abs(e * beta) / std::max(e.norm(), 1e-300);
+      if (c > best)
+        best = c, axis = d;
+    }
+    for (unsigned int d = 0; d < dim; ++d)
+      if (d != axis)
+        shortest = std::min(shortest, (cell->vertex(1u << d) - cell->vertex(0)).norm());
+    const double along = (cell->vertex(1u << axis) - cell->vertex(0)).norm();
+    if (along >= min_aspect * shortest)
+      cuts[cell->active_cell_index()] = static_cast<unsigned char>(1 + axis);
+  }
+  return cuts;
+}
+
+template <int dim>
+unsigned int add_cuts(Triangulation<dim> &tria, const std::vector<unsigned char> &cuts)
+{
+  unsigned int changed = 0;
+  for (const auto &cell : tria.active_cell_iterators())
+  {
+    const unsigned char c = cuts[cell->active_cell_index()];
+    if (c == 0)
+      continue;
+    const RefinementCase<dim> cut = RefinementCase<dim>::cut_axis(c - 1);
+    const RefinementCase<dim> old = cell->refine_flag_set();
+    const RefinementCase<dim> both = old | cut;
+    if (both != old)
+    {
+      cell->clear_coarsen_flag();
+      cell->set_refine_flag(both);
+      ++changed;
+    }
+  }
+  return changed;
+}
+
+template std::vector<unsigned char>
+cells_out_of_bounds<2>(const DoFHandler<2> &, const std::vector<Vector<double>> &, double,
+                       double, double, double, const std::function<Tensor<1, 2>(const Point<2> &)> &);
+template unsigned int add_cuts<2>(Triangulation<2> &, const std::vector<unsigned char> &);
 template double max_hanging_gap<2>(const Triangulation<2> &);
 template MarkingStats mark_cells<2>(Triangulation<2> &, const Indicators<2> &,
                                     const MarkingOptions &);

@@ -10,7 +10,12 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/grid/tria.h>
 
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/vector.h>
+
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace anisodwr
 {
@@ -45,6 +50,26 @@ tria_smoothing(const MarkingOptions &options)
              ? dealii::Triangulation<dim>::allow_anisotropic_smoothing
              : dealii::Triangulation<dim>::none;
 }
+
+/// Cells where the discrete solution leaves its bounds: for each active cell (by
+/// active_cell_index) 1 + the local axis most parallel to b at its centre (the axis
+/// whose halving shortens the cell along the flow), or 0 where every nodal value of
+/// every vector in `u` lies within [u_min - threshold, u_max + threshold], or where the
+/// cell's length along that axis is below min_aspect times its other lengths. Halving such
+/// a cell along b resolves the change of the solution along the flow where a long
+/// anisotropic cell lets SUPG oscillate (adaptivity.bound_refinement).
+template <int dim>
+std::vector<unsigned char>
+cells_out_of_bounds(const dealii::DoFHandler<dim> &dofs,
+                    const std::vector<dealii::Vector<double>> &u, double u_min,
+                    double u_max, double threshold, double min_aspect,
+                    const std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &)> &b);
+
+/// Adds to the refinement flags of the active cells the cut of `cuts` (as returned by
+/// cells_out_of_bounds; a cell flagged already gets the union of both cuts). Returns the
+/// number of cells whose flag changed.
+template <int dim>
+unsigned int add_cuts(dealii::Triangulation<dim> &tria, const std::vector<unsigned char> &cuts);
 
 /// Bisects the ceil(theta_tau N) slabs with the largest |eta_tau^n| (none if theta_tau =
 /// 0).

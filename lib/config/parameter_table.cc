@@ -459,7 +459,9 @@ std::vector<Entry> adaptivity_entries()
        "|eta_h,y| >= b |eta_tau| (or if it bisects no slab), with the shares of eta_abs "
        "(per goal, weighted by |w_i|, where each goal has its own estimate). So time is "
        "refined where eta_tau dominates, space where eta_h does, both where they are "
-       "within a factor 1/b; 0: both in every loop."},
+       "within a factor 1/b. With adaptivity.tolerance TOL > 0, a share below TOL/2 is "
+       "not refined (unless the other is too): the run stops when the sum is below TOL, "
+       "so each share has half of it. 0: both in every loop."},
       {"adaptivity", "theta_coarsen", "0", m(&S::theta_coarsen), real(0.),
        "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1].",
        "a fraction in [0, 1]", Check::fraction},
@@ -545,6 +547,14 @@ std::vector<Entry> adaptivity_entries()
        "term's eps Lap part below the diffusion. Without it the adjoint of degree q = 4 "
        "grows without bound on thin cells (doc/results.md, 'Error control without "
        "tuning'); false: delta_K = adjoint_delta0 h_K alone."},
+      {"adaptivity", "bound_refinement", "0", m(&S::bound_refinement), real(0.),
+       "Refinement where u_h leaves its bounds (probes.csv's u_min, u_max: the scene's, "
+       "the exact solution's or the data's by the maximum principle): a cell with a "
+       "nodal value at a slab end outside [u_min - f R, u_max + f R] (f this value, R = "
+       "u_max - u_min) that is at least 10 times longer along b than across is also "
+       "halved along b, beside the marking (loops.csv `bound_cuts`). SUPG oscillates on "
+       "such cells where the solution changes along the flow (Hemker: the top of the "
+       "circle, doc/results.md). 0: off; no effect without bounds."},
   };
 }
 

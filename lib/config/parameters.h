@@ -123,6 +123,9 @@ struct AdaptivitySection : MarkingOptions
   double adjoint_delta0 = -1.; ///< < 0: discretization.delta0
   /// the adjoint's delta_K <= h_min^2 / (eps q^4) (Stabilization::inverse_bound)
   bool adjoint_inverse_bound = true;
+  /// cells leaving the bounds by more than this fraction of their range are halved
+  /// along b (cells_out_of_bounds); 0: off
+  double bound_refinement = 0.;
 };
 
 struct OutputSection

@@ -65,7 +65,7 @@ std::vector<double> LoopRow::all_values() const
             double(marking[1]), double(marking[2]), double(marking[3]),
             double(marking[4]), mem_estimate, eta_h_rho, eta_h_rhostar, eta_h_supg,
             no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest,
-            eta_parts_abs(), hanging_gap, eta_h_data});
+            eta_parts_abs(), hanging_gap, eta_h_data, double(bound_cuts)});
   return v;
 }
 
@@ -115,7 +115,8 @@ double LoopRow::eta_time_abs() const
 /// factor sizes of the primal and adjoint slab matrices (MB), whether the primal and
 /// the adjoint marched concurrently (1/0), the remainder of the directional split and
 /// LoopRow::eta_parts_abs(), the mesh's hanging-node mismatch (max_hanging_gap) and the
-/// Dirichlet data's share of eta_h (Indicators::eta_h_data).
+/// Dirichlet data's share of eta_h (Indicators::eta_h_data), and the cells that
+/// adaptivity.bound_refinement cut.
 std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names)
 {
   auto c = columns;
@@ -128,7 +129,7 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
             "marked_x", "marked_y", "marked_xy", "closure", "memory_estimate_mb",
             "eta_h_rho", "eta_h_rhostar", "eta_h_supg", "no_lift", "lu_primal_mb",
             "lu_adjoint_mb", "concurrent", "eta_h_split_rest", "eta_abs",
-            "hanging_gap", "eta_h_data"});
+            "hanging_gap", "eta_h_data", "bound_cuts"});
   return c;
 }
 

@@ -54,6 +54,8 @@ struct LoopRow
   /// the cells of the refinement that follows this loop (zeros on the last): marked,
   /// cut in x only, in y only, in both, flagged or extended by the closure
   std::array<unsigned int, 5> marking{};
+  /// cells whose refinement flag adaptivity.bound_refinement set or extended
+  unsigned int bound_cuts = 0;
   /// the probes by name (the columns of probes.csv) and the bounds they used
   std::vector<std::pair<std::string, double>> probes;
   std::string bounds; ///< where the probes' bounds come from (ProbeResult::bounds)

@@ -113,6 +113,8 @@ private:
   const bool has_exact; ///< error_reference != "none"
   std::vector<double> J_exact;
   MarkingOptions marking;
+  /// per active cell, the cut that adaptivity.bound_refinement adds (cells_out_of_bounds)
+  std::vector<unsigned char> bound_cuts;
   Triangulation<2> tria;
   TimeMesh mesh;
   const TemporalBasis basis;

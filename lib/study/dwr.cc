@@ -23,17 +23,29 @@ namespace
 /// |eta_h,y|), and the cells where the spatial share is not small against the temporal
 /// one, |eta_h,x| + |eta_h,y| >= b |eta_tau| (or where no slab is bisected: theta_tau =
 /// 0). The shares are those of eta_abs (per goal, weighted by |w_i|, where each goal has
-/// its own estimate). b = 0: both in every loop; every loop refines one or both.
+/// its own estimate). With adaptivity.tolerance TOL > 0 and b > 0, a share below TOL/2
+/// is not refined (unless nothing else is). b = 0: both in every loop; every loop
+/// refines one or both.
 struct Balance
 {
   bool space, time;
 };
 
+/// adaptivity.bound_refinement halves cells along b that are this many times longer
+/// along b than across
+constexpr double bound_cut_aspect = 10.;
+
 Balance balance(const LoopRow &row, const AdaptivitySection &a)
 {
   const double space = row.eta_space_abs(), time = row.eta_time_abs();
-  const bool time_refined = a.theta_tau > 0 && time >= a.time_balance * space;
-  return {!time_refined || space >= a.time_balance * time, time_refined};
+  // with a tolerance (and b > 0), a part below its half of it is not refined: the run
+  // stops once the other part is below the other half, and refining it further would
+  // leave it far below the other at the stop
+  const double share = a.time_balance > 0 ? a.tolerance / 2 : 0.;
+  const bool time_refined =
+      a.theta_tau > 0 && time >= a.time_balance * space && time >= share;
+  return {!time_refined || (space >= a.time_balance * time && space >= share),
+          time_refined};
 }
 
 /// The scene of the run, with the output directory created first.
@@ -103,6 +115,8 @@ void AdaptiveLoop::run()
         {
           const MarkingStats m = mark_cells(tria, ind, marking);
           row.marking = {{m.marked, m.cut_x, m.cut_y, m.cut_both, m.closure}};
+          if (!bound_cuts.empty())
+            row.bound_cuts = add_cuts(tria, bound_cuts);
           tria.execute_coarsening_and_refinement();
         }
         if (refine.time)
@@ -232,6 +246,29 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   Vector<double> uT;
   combine_blocks(U.back(), basis.right_trace(), uT);
   write_loop_outputs(prm, *scene, probe_spec, row, primal, uT, ind, ar_cell, vtu_records);
+  bound_cuts.clear();
+  const double bound_fraction = prm.adaptivity.bound_refinement;
+  if (bound_fraction > 0)
+  {
+    double u_min = dwr_nan, u_max = dwr_nan;
+    for (const auto &p : row.probes)
+    {
+      if (p.first == "u_min")
+        u_min = p.second;
+      if (p.first == "u_max")
+        u_max = p.second;
+    }
+    if (std::isfinite(u_min) && std::isfinite(u_max))
+    {
+      std::vector<Vector<double>> ends(U.size());
+      for (std::size_t n = 0; n < U.size(); ++n)
+        combine_blocks(U[n], basis.right_trace(), ends[n]);
+      bound_cuts = cells_out_of_bounds<2>(
+          primal.dof_handler(), ends, u_min, u_max, bound_fraction * (u_max - u_min),
+          bound_cut_aspect,
+          [this](const Point<2> &x) { return scene->convection(x, 0.); });
+    }
+  }
   return true;
 }
 
