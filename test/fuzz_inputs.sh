@@ -136,6 +136,19 @@ example=$src/config/custom_example.json
 for v in 'sin(x' 'x+' '2*' 'x y' 'q' '(1' 'sin()' '1/' ''; do
   check "scene.rhs" -- "$mesh" --set "scene.rhs=$v"
 done
+# muparser would take these: the last of several values, an assignment
+check "'1, 2' for key 'scene.rhs': it has 2 comma-separated values" -- "$mesh" --set "scene.rhs=1, 2"
+check "'x = 3' for key 'scene.rhs': '=' at position 2 assigns" -- "$mesh" --set "scene.rhs=x = 3"
+check "for key 'scene.dirichlet': '=' at position" -- "$mesh" \
+  --set "scene.dirichlet=1: y = x; 4: 1"
+# data that are not finite somewhere on the domain: the key, the expression and a point
+for v in '1/0' 'sqrt(-1)' 'log(0)'; do
+  check "key 'scene.rhs': the expression '$v' is" -- "$mesh" --set "scene.rhs=$v"
+done
+check "key 'scene.rhs': the expression '1/(x-0.5)' is infinite at (x, y, t) = (0.5," -- \
+  "$example" --set "scene.rhs=1/(x-0.5)"
+check "key 'scene.dirichlet': the expression ' log(y)' is infinite" -- "$mesh" \
+  --set "scene.dirichlet=1: log(y); 4: 1"
 check "scene.reaction" -- "$mesh" --set "scene.reaction=nx"
 check "scene.initial_value" -- "$mesh" --set "scene.initial_value=u"
 check "scene.neumann" -- "$mesh" --set "scene.neumann=2, 3: nz"

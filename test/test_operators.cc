@@ -98,11 +98,11 @@ double error_on_cell(const SpatialOperators<2> &ops, const Mapping<2> &mapping,
                  std::abs(w(m) - f(mapping.transform_unit_to_real_cell(cell, pts[m]))));
   return e;
 }
-} // namespace
 
 class Lifts : public ::testing::TestWithParam<std::tuple<MeshKind, unsigned int>>
 {
 };
+} // namespace
 
 TEST_P(Lifts, DirectionalLiftReproducesDegree2pAlongI)
 {

@@ -54,6 +54,17 @@ std::string one_line(const std::string &what)
   return out;
 }
 
+/// The unit normal of the straight face f of cell, pointing out of the cell.
+Tensor<1, 2> outward_normal(const Triangulation<2>::active_cell_iterator &cell, unsigned int f)
+{
+  const auto face = cell->face(f);
+  const Tensor<1, 2> e = face->vertex(1) - face->vertex(0);
+  Tensor<1, 2> n({e[1], -e[0]});
+  if (n * (face->center() - cell->center()) < 0)
+    n = -n;
+  return n / n.norm();
+}
+
 /// True if x lies in the polygon v (counter-clockwise or not) or within tol of its edges.
 bool in_polygon(const Point<2> &x, const std::array<Point<2>, 4> &v, double tol)
 {
@@ -333,6 +344,7 @@ CustomScene::CustomScene(const SceneOptions &o) : geometry(std::make_unique<Geom
                                  load_terms);
   }
   read_boundary_data(o, constants);
+  check_data_finite(o);
   read_goals(o);
   if (!trim_ws(c.exact_solution).empty())
   {
@@ -518,6 +530,69 @@ bool CustomScene::contains_box(const Point<2> &lo, const Point<2> &hi) const
   return true;
 }
 
+void CustomScene::check_data_finite(const SceneOptions &o) const
+{
+  const Geometry &G = *geometry;
+  std::vector<double> times{0.};
+  for (const double a : {0.25, 0.5, 0.75, 1.})
+    times.push_back(a * end_time);
+  auto fail = [&](const Expression &e, double value, const Point<2> &x, double t)
+  {
+    std::ostringstream at;
+    at.precision(6);
+    at << "(x, y, t) = (" << x[0] << ", " << x[1] << ", " << t << ")";
+    throw InputError(o.source(e.key()) + ": key '" + e.key() + "': the expression '" +
+                     e.text() + "' is " + (std::isnan(value) ? "NaN" : "infinite") +
+                     " at " + at.str() + "; expected data finite on the domain");
+  };
+  // the vertices of the refined copy of the domain (where a singularity on a grid line
+  // is met) and its cell centres
+  std::vector<Point<2>> points;
+  for (const auto &cell : G.fine.active_cell_iterators())
+  {
+    points.push_back(cell->center());
+    for (const unsigned int v : cell->vertex_indices())
+      points.push_back(cell->vertex(v));
+  }
+  for (const auto &x : points)
+  {
+    const double u = u0(x[0], x[1], 0.);
+    if (!std::isfinite(u))
+      fail(u0, u, x, 0.);
+    for (const double t : times)
+      for (const Expression *e : {&f, &alpha, &b[0], &b[1]})
+      {
+        const double v = (*e)(x[0], x[1], t);
+        if (!std::isfinite(v))
+          fail(*e, v, x, t);
+      }
+  }
+  for (const auto &cell : G.fine.active_cell_iterators())
+    for (const auto fi : cell->face_indices())
+      if (cell->at_boundary(fi))
+      {
+        const auto face = cell->face(fi);
+        const Tensor<1, 2> n = outward_normal(cell, fi);
+        for (const Point<2> &x : {face->vertex(0), face->vertex(1), face->center()})
+          for (const double t : times)
+          {
+            if (const auto d = g_dirichlet.find(face->boundary_id()); d != g_dirichlet.end())
+            {
+              const double v = d->second(x[0], x[1], t);
+              if (!std::isfinite(v))
+                fail(d->second, v, x, t);
+            }
+            if (const auto g = g_neumann.find(face->boundary_id()); g != g_neumann.end())
+            {
+              const double a[5] = {x[0], x[1], t, n[0], n[1]};
+              const double v = g->second(a);
+              if (!std::isfinite(v))
+                fail(g->second, v, x, t);
+            }
+          }
+      }
+}
+
 SamplePoints CustomScene::sample_points() const
 {
   const Geometry &G = *geometry;
@@ -538,12 +613,8 @@ SamplePoints CustomScene::sample_points() const
       if (cell->at_boundary(f))
       {
         const auto face = cell->face(f);
-        const Tensor<1, 2> e = face->vertex(1) - face->vertex(0);
-        Tensor<1, 2> n({e[1], -e[0]});
-        if (n * (face->center() - cell->center()) < 0)
-          n = -n;
         by_id[face->boundary_id()].push_back(
-            {face->center(), n / n.norm(), face->boundary_id()});
+            {face->center(), outward_normal(cell, f), face->boundary_id()});
       }
   for (const auto &[id, points] : by_id)
   {

@@ -95,6 +95,11 @@ public:
 
   /// The points at which the data are checked against the exact solution.
   SamplePoints sample_points() const;
+  /// InputError naming the key, the expression and the point where f, alpha, b, u_0,
+  /// g_D or g_N is NaN or infinite at a vertex or cell centre of the refined copy of
+  /// the domain (boundary data: at its boundary faces' vertices and centres) at t = 0,
+  /// T/4, ..., T.
+  void check_data_finite(const SceneOptions &o) const;
 
 private:
   struct Geometry;

@@ -90,10 +90,20 @@ Expression::Expression(const std::string &text, const std::vector<std::string> &
       where + ": invalid expression '" + text + "' for key '" + key + "'";
   if (trim_ws(text).empty())
     throw InputError(bad + ": the expression is empty");
+  // muparser's assignment (x = 3 sets x and gives 3), not a comparison ==, <=, >=, !=
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '=' && (i + 1 == text.size() || text[i + 1] != '=') &&
+        (i == 0 || std::string("=<>!").find(text[i - 1]) == std::string::npos))
+      throw InputError(bad + ": '=' at position " + std::to_string(i) +
+                       " assigns; expected an expression of the variables (== compares)");
   try
   {
     auto slot = make_slot(text, variables, constants);
     slot->parser.Eval(); // parses; the value at 0 does not matter
+    if (slot->parser.GetNumResults() > 1)
+      throw InputError(bad + ": it has " + std::to_string(slot->parser.GetNumResults()) +
+                       " comma-separated values; expected one expression (a function's "
+                       "arguments are the only place for ',')");
     for (const auto &v : slot->parser.GetUsedVar())
       used.push_back(v.first);
     if (used.empty()) // a constant: evaluated once

@@ -233,6 +233,14 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   for (double e : ind.eta_tau_slab)
     if (!std::isfinite(e))
       throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
+  // (an overflow in the data, e.g. f = 1e308 x, leaves u_h finite and eta_h not)
+  for (const auto &e : ind.eta_h_cell)
+    if (!std::isfinite(e[0]) || !std::isfinite(e[1]))
+      throw NumericalError(opt.label + ": the space indicator eta_h is NaN/Inf (an "
+                                       "overflow in the data or the solution?)");
+  for (const double J : row.J_goal)
+    if (!std::isfinite(J))
+      throw NumericalError(opt.label + ": a goal value J(u_h) is NaN/Inf");
   if (prm.adaptivity.measure_time_error)
     measure_time_error(
         [&](double tau_scale)
