@@ -142,7 +142,7 @@ check "'x = 3' for key 'scene.rhs': '=' at position 2 assigns" -- "$mesh" --set 
 check "for key 'scene.dirichlet': '=' at position" -- "$mesh" \
   --set "scene.dirichlet=1: y = x; 4: 1"
 # data that are not finite somewhere on the domain: the key, the expression and a point
-for v in '1/0' 'sqrt(-1)' 'log(0)'; do
+for v in '1/0' 'sqrt(-1)' 'log(0)' '1e308*x'; do
   check "key 'scene.rhs': the expression '$v' is" -- "$mesh" --set "scene.rhs=$v"
 done
 check "key 'scene.rhs': the expression '1/(x-0.5)' is infinite at (x, y, t) = (0.5," -- \
