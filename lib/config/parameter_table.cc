@@ -459,9 +459,7 @@ std::vector<Entry> adaptivity_entries()
        "|eta_h,y| >= b |eta_tau| (or if it bisects no slab), with the shares of eta_abs "
        "(per goal, weighted by |w_i|, where each goal has its own estimate). So time is "
        "refined where eta_tau dominates, space where eta_h does, both where they are "
-       "within a factor 1/b. With adaptivity.tolerance TOL > 0, a share below TOL/2 is "
-       "not refined (unless the other is too): the run stops when the sum is below TOL, "
-       "so each share has half of it. 0: both in every loop."},
+       "within a factor 1/b; 0: both in every loop."},
       {"adaptivity", "theta_coarsen", "0", m(&S::theta_coarsen), real(0.),
        "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1].",
        "a fraction in [0, 1]", Check::fraction},

@@ -23,9 +23,7 @@ namespace
 /// |eta_h,y|), and the cells where the spatial share is not small against the temporal
 /// one, |eta_h,x| + |eta_h,y| >= b |eta_tau| (or where no slab is bisected: theta_tau =
 /// 0). The shares are those of eta_abs (per goal, weighted by |w_i|, where each goal has
-/// its own estimate). With adaptivity.tolerance TOL > 0 and b > 0, a share below TOL/2
-/// is not refined (unless nothing else is). b = 0: both in every loop; every loop
-/// refines one or both.
+/// its own estimate). b = 0: both in every loop; every loop refines one or both.
 struct Balance
 {
   bool space, time;
@@ -38,14 +36,8 @@ constexpr double bound_cut_aspect = 10.;
 Balance balance(const LoopRow &row, const AdaptivitySection &a)
 {
   const double space = row.eta_space_abs(), time = row.eta_time_abs();
-  // with a tolerance (and b > 0), a part below its half of it is not refined: the run
-  // stops once the other part is below the other half, and refining it further would
-  // leave it far below the other at the stop
-  const double share = a.time_balance > 0 ? a.tolerance / 2 : 0.;
-  const bool time_refined =
-      a.theta_tau > 0 && time >= a.time_balance * space && time >= share;
-  return {!time_refined || (space >= a.time_balance * time && space >= share),
-          time_refined};
+  const bool time_refined = a.theta_tau > 0 && time >= a.time_balance * space;
+  return {!time_refined || space >= a.time_balance * time, time_refined};
 }
 
 /// The scene of the run, with the output directory created first.
