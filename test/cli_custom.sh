@@ -114,4 +114,28 @@ print("flux goal beside per-id Neumann data: J", J, "(exact 0.5), relative error
 if not (abs(J - 0.5) < 1e-10 and err < 1e-10):
     sys.exit("FAIL: the flux goal is %.12g with the error %g; expected 0.5" % (J, err))
 PY
+# 6. one rule for boundary ids: a Gmsh physical tag 300 takes Dirichlet data and a flux goal
+cat >"$tmp/tag300.msh" <<'MSH'
+$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$Nodes
+4
+1 0 0 0
+2 1 0 0
+3 1 1 0
+4 0 1 0
+$EndNodes
+$Elements
+5
+1 1 2 300 300 1 2
+2 1 2 300 300 2 3
+3 1 2 300 300 3 4
+4 1 2 300 300 4 1
+5 3 2 10 10 1 2 3 4
+$EndElements
+MSH
+expect 0 "results:" -- run "$tmp/xy.json" --output "$tmp/tag300" --set "scene.grid=" \
+  --set "scene.mesh_file=$tmp/tag300.msh" --set "scene.dirichlet=300: x*y" \
+  --set "scene.neumann=" --set "scene.goals=all = flux 300"
 exit $fail

@@ -179,8 +179,10 @@ public:
     g.boundary_ids.clear();
     for (const double x : v)
     {
-      if (!(x >= 0 && x == std::floor(x) && x < 255))
-        throw InputError(bad + "a boundary id is an integer in [0, 255)");
+      // the rule of scene.dirichlet and scene.neumann: any id of deal.II's range
+      if (!(x >= 0 && x == std::floor(x) && x < double(numbers::internal_face_boundary_id)))
+        throw InputError(bad + "a boundary id is an integer in [0, " +
+                         std::to_string(numbers::internal_face_boundary_id) + ")");
       const auto id = static_cast<types::boundary_id>(x);
       if (!scene.dirichlet_ids.count(id))
         throw InputError(bad + "boundary id " + std::to_string(id) +
