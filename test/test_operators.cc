@@ -39,6 +39,10 @@ Poly poly(unsigned int a, unsigned int b)
   };
 }
 
+} // namespace
+
+// (outside the anonymous namespace: the test fixture below, which gtest derives global
+// classes from, takes it as a parameter type; -Wsubobject-linkage otherwise)
 enum class MeshKind
 {
   isotropic,
@@ -46,6 +50,9 @@ enum class MeshKind
   aniso_y,
   mixed
 };
+
+namespace
+{
 
 /// Meshes on a rectangle (0,2)x(0,1) made of 2x1 coarse cells.
 void make_mesh(Triangulation<2> &tria, MeshKind kind)
@@ -98,11 +105,11 @@ double error_on_cell(const SpatialOperators<2> &ops, const Mapping<2> &mapping,
                  std::abs(w(m) - f(mapping.transform_unit_to_real_cell(cell, pts[m]))));
   return e;
 }
+} // namespace
 
 class Lifts : public ::testing::TestWithParam<std::tuple<MeshKind, unsigned int>>
 {
 };
-} // namespace
 
 TEST_P(Lifts, DirectionalLiftReproducesDegree2pAlongI)
 {
