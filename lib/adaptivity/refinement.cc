@@ -8,6 +8,7 @@
 #include <deal.II/grid/tria_iterator.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -257,21 +258,22 @@ cells_out_of_bounds(const DoFHandler<dim> &dofs, const std::vector<Vector<double
     if (!out)
       continue;
     const Tensor<1, dim> beta = b(cell->center());
+    // the cell's local axes d: from vertex 0 to the vertex 2^d
+    std::array<Tensor<1, dim>, dim> e;
     unsigned int axis = 0;
-    double best = -1., shortest = 1e300;
+    double best = -1.;
     for (unsigned int d = 0; d < dim; ++d)
     {
-      // the cell's local axis d: from vertex 0 to the vertex 2^d
-      const Tensor<1, dim> e = cell->vertex(1u << d) - cell->vertex(0);
-      const double c = std::abs(e * beta) / std::max(e.norm(), 1e-300);
+      e[d] = cell->vertex(1u << d) - cell->vertex(0);
+      const double c = std::abs(e[d] * beta) / std::max(e[d].norm(), 1e-300);
       if (c > best)
         best = c, axis = d;
     }
+    double shortest = 1e300;
     for (unsigned int d = 0; d < dim; ++d)
       if (d != axis)
-        shortest = std::min(shortest, (cell->vertex(1u << d) - cell->vertex(0)).norm());
-    const double along = (cell->vertex(1u << axis) - cell->vertex(0)).norm();
-    if (along >= min_aspect * shortest)
+        shortest = std::min(shortest, e[d].norm());
+    if (e[axis].norm() >= min_aspect * shortest)
       cuts[cell->active_cell_index()] = static_cast<unsigned char>(1 + axis);
   }
   return cuts;
