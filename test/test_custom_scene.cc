@@ -5,8 +5,11 @@
 #include "config/parameters.h"
 #include "scene/custom_scene.h"
 #include "scene/separable.h"
+#include "space/space.h"
 #include "study/options.h"
 
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
@@ -279,4 +282,51 @@ TEST(CustomScene, GeneratorWithCurvedBoundary)
   EXPECT_FALSE(scene->contains(Point<2>(0.2, 0.245)));
   EXPECT_TRUE(scene->contains(Point<2>(0.2, 0.26)));
   EXPECT_TRUE(scene->contains(Point<2>(1., 0.2)));
+}
+
+// The cells' map follows the circle between its vertices: the area of Hemker's domain,
+// 66 - pi, converges at O(h^2) with MappingQ(1) (the polygon) and at O(h^4) with
+// MappingQ(2); auto (discretization.mapping_degree = 0) is isoparametric on curved meshes
+// and 1 on straight ones.
+TEST(Mapping, CurvedBoundaryAreaConvergesAtTheMapsOrder)
+{
+  const auto hemker = scene_of("hemker.json");
+  const double exact = 66 - M_PI;
+  std::vector<double> error[3];
+  for (unsigned int k = 1; k <= 3; ++k)
+  {
+    dealii::Triangulation<2> tria;
+    hemker->make_coarse_grid(tria);
+    tria.refine_global(k);
+    if (k == 1)
+    {
+      EXPECT_EQ(auto_mapping_degree(tria, 1), 1u);
+      EXPECT_EQ(auto_mapping_degree(tria, 2), 2u);
+    }
+    for (unsigned int m = 1; m <= 2; ++m)
+    {
+      const Space<2> space(*hemker, tria, 1, Stabilization{}, m);
+      EXPECT_EQ(space.mapping_degree(), m);
+      dealii::FEValues<2> fv(space.mapping(), space.finite_element(), dealii::QGauss<2>(4),
+                             dealii::update_JxW_values);
+      double area = 0;
+      for (const auto &cell : tria.active_cell_iterators())
+      {
+        fv.reinit(cell);
+        for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
+          area += fv.JxW(q);
+      }
+      error[m].push_back(std::abs(area - exact));
+    }
+  }
+  for (unsigned int k = 0; k + 1 < 3; ++k)
+  {
+    const double q1 = error[1][k] / error[1][k + 1], q2 = error[2][k] / error[2][k + 1];
+    EXPECT_NEAR(q1, 4, 0.4) << "MappingQ(1), refinement " << k + 1;
+    EXPECT_GT(q2, 12) << "MappingQ(2), refinement " << k + 1;
+    EXPECT_LT(error[2][k + 1], 1e-2 * error[1][k + 1]);
+  }
+  dealii::Triangulation<2> square;
+  dealii::GridGenerator::hyper_cube(square);
+  EXPECT_EQ(auto_mapping_degree(square, 3), 1u);
 }

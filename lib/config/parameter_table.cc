@@ -222,6 +222,14 @@ std::vector<Entry> discretization_entries()
        "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},
       {"discretization", "n_slabs", "5", m(&S::n_slabs), integer(1, 1000000),
        "Number of equal time slabs."},
+      {"discretization", "mapping_degree", "0", m(&S::mapping_degree), integer(0, 4),
+       "Polynomial degree of the cells' map (MappingQ) through the mesh's manifolds, for "
+       "the primal and the adjoint alike. 1: straight edges, a curved boundary becomes "
+       "the polygon through its vertices; 2 and more follow it between the vertices. "
+       "0 (auto): p (isoparametric) if the mesh carries a curved manifold (hemker, custom "
+       "scene.manifolds), else 1: Q_p on a curved domain keeps its order (the polygon's "
+       "error is O(h^2)). hemker at p = 1 with 2 is measured in doc/results.md ('Hemker: "
+       "the circle's polygon and the layer')."},
   };
 }
 

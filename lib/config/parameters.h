@@ -65,6 +65,8 @@ struct DiscretizationSection : Stabilization
   double growth_limit = 1e4;
   unsigned int initial_refinements = 2;
   unsigned int n_slabs = 5;
+  /// MappingQ degree of the cells; 0 = auto_mapping_degree (space/space.h)
+  unsigned int mapping_degree = 0;
 };
 
 /// Spatial DoF order (solver.dof_numbering): automatic ("auto") = downstream unless

@@ -111,8 +111,9 @@ private:
 /// Neumann elsewhere, u_0 = 0, f = 0, alpha = 0; no exact solution. Boundary ids:
 /// 0 inflow, 1 circle (Dirichlet), 2 the rest (Neumann). The circle carries a
 /// PolarManifold (manifold id 0), the cells of the square (-3,3)^2 a
-/// TransfiniteInterpolationManifold (id 1); the FE map is MappingQ(1), so the discrete
-/// boundary is the polygon through the refined vertices on the circle.
+/// TransfiniteInterpolationManifold (id 1); the FE map is
+/// MappingQ(discretization.mapping_degree), auto p: at p = 1 the discrete boundary is the
+/// polygon through the refined vertices on the circle.
 class Hemker : public Scene<2>
 {
 public:

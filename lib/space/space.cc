@@ -18,9 +18,10 @@ using namespace dealii;
 
 template <int dim>
 Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria,
-                  unsigned int degree, const Stabilization &stabilization)
+                  unsigned int degree, const Stabilization &stabilization,
+                  unsigned int mapping_degree)
     : scene(scene), stab(stabilization), fe(degree),
-      map(1), dofs(tria)
+      map(mapping_degree), dofs(tria)
 {
 }
 
@@ -309,5 +310,15 @@ template <int dim> void Space<dim>::assemble_initial(double tau, Vector<double> 
   U0 = std::move(F[0]);
 }
 
+template <int dim>
+unsigned int auto_mapping_degree(const Triangulation<dim> &tria, unsigned int p)
+{
+  for (const types::manifold_id id : tria.get_manifold_ids())
+    if (id != numbers::flat_manifold_id)
+      return p;
+  return 1;
+}
+
 template class Space<2>;
+template unsigned int auto_mapping_degree(const Triangulation<2> &, unsigned int);
 } // namespace anisodwr

@@ -36,8 +36,12 @@ public:
   /// SupgLength::streamline, h_K = the length of K along b (for anisotropic cells); if
   /// supg_tau_factor > 0, delta_K <= supg_tau_factor * tau_n on a slab of length tau_n
   /// (the stability bound of SUPG with the time derivative in the test function).
+  /// The cells are mapped by MappingQ(mapping_degree) through the triangulation's
+  /// manifolds: 1 gives straight edges (the polygon through the vertices on a curved
+  /// boundary), 2 and more follow a curved boundary between the vertices.
   Space(const Scene<dim> &scene, const dealii::Triangulation<dim> &tria,
-        unsigned int degree, const Stabilization &stabilization);
+        unsigned int degree, const Stabilization &stabilization,
+        unsigned int mapping_degree = 1);
 
   /// Distributes DoFs, builds constraints and the sparsity pattern (call after
   /// refinement).
@@ -59,6 +63,7 @@ public:
   dealii::types::global_dof_index n_dofs() const { return dofs.n_dofs(); }
   const dealii::DoFHandler<dim> &dof_handler() const { return dofs; }
   const dealii::Mapping<dim> &mapping() const { return map; }
+  unsigned int mapping_degree() const { return map.get_degree(); }
   const dealii::FiniteElement<dim> &finite_element() const { return fe; }
   /// Hanging nodes + homogeneous Dirichlet.
   const dealii::AffineConstraints<double> &constraints() const { return homogeneous; }
@@ -134,4 +139,10 @@ private:
   mutable std::map<double, std::vector<dealii::Vector<double>>> load_terms;
   mutable std::mutex load_terms_mutex;
 };
+/// discretization.mapping_degree = 0 (auto): p (isoparametric) if a cell, face or line
+/// of `tria` carries a manifold other than the flat one (a curved boundary or interior),
+/// else 1.
+template <int dim>
+unsigned int auto_mapping_degree(const dealii::Triangulation<dim> &tria, unsigned int p);
+
 } // namespace anisodwr

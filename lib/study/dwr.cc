@@ -87,7 +87,8 @@ void AdaptiveLoop::run()
                               mem_limit);
     for (std::size_t g = 0; g < goals.size(); ++g)
       J_exact[g] = scene->exact() ? exact_goal(*scene, goals[g]) : goals[g].reference;
-    print_run_line(std::cout, prm, *scene, q, goals, J_exact, has_exact);
+    print_run_line(std::cout, prm, *scene, q, goals, J_exact, has_exact,
+                   mapping_degree(prm, tria));
     print_loop_header(std::cout);
     tria.refine_global(prm.discretization.initial_refinements);
     base_mb = mpi_max(resident_memory_mb());

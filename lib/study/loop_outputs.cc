@@ -49,11 +49,16 @@ void write_loop_outputs(const Parameters &prm, const Scene<2> &scene,
 
 void print_run_line(std::ostream &out, const Parameters &prm, const Scene<2> &scene,
                     unsigned int q, const std::vector<GoalSpec> &goals,
-                    const std::vector<double> &J_exact, bool has_exact)
+                    const std::vector<double> &J_exact, bool has_exact,
+                    unsigned int mapping_degree)
 {
   out << "anisodwr dwr: scene " << scene.name() << ", cG(" << prm.discretization.p
-      << ")-dG(" << prm.discretization.r << "), adjoint cG(" << q << "), "
-      << name(prm.adaptivity.mode) << ", goals:";
+      << ")-dG(" << prm.discretization.r << "), adjoint cG(" << q << "), ";
+  if (mapping_degree > 1)
+    out << "MappingQ(" << mapping_degree << ")"
+        << (prm.discretization.mapping_degree == 0 ? " (auto: curved manifold)" : "")
+        << ", ";
+  out << name(prm.adaptivity.mode) << ", goals:";
   for (std::size_t g = 0; g < goals.size(); ++g)
     out << " " << goals[g].name << (has_exact ? " = " + json_number(J_exact[g], 12) : "")
         << (std::isnan(goals[g].reference)

@@ -41,8 +41,10 @@ void add_goal_estimate(LoopRow &row, const Indicators<2> &goal_ind);
 
 /// The first line of a DWR run on `out`: scene, degrees (adjoint degree q), adaptivity
 /// mode and the goals, each with its exact value (has_exact; J_exact per goal) and its
-/// reference uncertainty if goal.reference gave one.
+/// reference uncertainty if goal.reference gave one; the cells' MappingQ degree if
+/// above 1.
 void print_run_line(std::ostream &out, const Parameters &prm, const Scene<2> &scene,
                     unsigned int q, const std::vector<GoalSpec> &goals,
-                    const std::vector<double> &J_exact, bool has_exact);
+                    const std::vector<double> &J_exact, bool has_exact,
+                    unsigned int mapping_degree);
 } // namespace anisodwr

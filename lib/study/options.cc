@@ -36,6 +36,13 @@ MarkingOptions marking_options(const Parameters &prm)
   return prm.adaptivity; // the section is the marking options plus the loop's keys
 }
 
+unsigned int mapping_degree(const Parameters &prm, const dealii::Triangulation<2, 2> &tria)
+{
+  return prm.discretization.mapping_degree > 0
+             ? prm.discretization.mapping_degree
+             : auto_mapping_degree(tria, prm.discretization.p);
+}
+
 namespace
 {
 std::unique_ptr<Space<2>> make_space_with(const Parameters &prm, const Scene<2> &scene,
@@ -47,7 +54,8 @@ std::unique_ptr<Space<2>> make_space_with(const Parameters &prm, const Scene<2> 
   stab.delta0 = delta0;
   stab.inverse_bound = inverse_bound;
   stab.supg_tau_factor *= tau_scale;
-  auto space = std::make_unique<Space<2>>(scene, tria, degree, stab);
+  auto space =
+      std::make_unique<Space<2>>(scene, tria, degree, stab, mapping_degree(prm, tria));
   const DofNumbering numbering = prm.solver.dof_numbering;
   if (numbering != DofNumbering::automatic || prm.solver.type == SolverType::direct)
     space->set_downstream_numbering(numbering == DofNumbering::downstream);

@@ -34,7 +34,11 @@ SlabSolverOptions slab_solver_options(const Parameters &prm);
 /// The marking options of the adaptivity section.
 MarkingOptions marking_options(const Parameters &prm);
 
-/// The FE_Q(degree) space of a run on `tria`, set up: SUPG from the discretization
+/// The MappingQ degree of the run's spaces: discretization.mapping_degree, or for 0
+/// (auto) auto_mapping_degree of `tria` (p on curved manifolds, else 1).
+unsigned int mapping_degree(const Parameters &prm, const dealii::Triangulation<2, 2> &tria);
+
+/// The FE_Q(degree) space of a run on `tria`, mapped by mapping_degree(prm, tria), set up: SUPG from the discretization
 /// section, DoFs numbered as solver.dof_numbering says. tau_scale multiplies
 /// supg_tau_factor (the bound delta_K <= supg_tau_factor * tau_n): the temporal error
 /// check gives its three time meshes the bound of the finest with 1/4, 1/2, 1.
