@@ -166,6 +166,18 @@ check "scene.mesh_file" -- "$mesh" --set "scene.mesh_file=$src/README.md"
 check "scene.grid" -- "$example" --set "scene.grid_arguments=0 : 1"
 check "scene.manifolds" -- "$mesh" --set "scene.manifolds=boundary 9: polar 0, 0"
 check "scene.manifolds" -- "$mesh" --set "scene.manifolds=cells 10: polar 0"
+# polar cells about a wrong centre bend straight walls into spirals
+check "is neither an arc about" -- "$mesh" --set "scene.manifolds=cells 10: polar 5, 5"
+# repetitions that deal.II reads as 2^32 - 1 or as the first of two (memory), and a
+# domain whose areas overflow (the goal quadrature then never ends)
+for reps in '-1, 1' '4' '1, 0' '2000, 2000'; do
+  check "key 'scene.grid_arguments'" -- "$example" --set scene.grid=subdivided_hyper_rectangle \
+    --set "scene.grid_arguments=$reps : 0, 0 : 1, 1 : true"
+done
+check "key 'scene.grid_arguments'" -- "$example" --set scene.grid=subdivided_hyper_cube \
+  --set "scene.grid_arguments=-3 : 0 : 1"
+check "beyond 1e8 in size" -- "$example" --set scene.grid=hyper_rectangle \
+  --set "scene.grid_arguments=0, 0 : 1e300, 1e300 : true"
 check "scene.manifolds" -- "$mesh" --set "scene.manifolds=faces 4: transfinite"
 check "scene.manifolds" -- "$example" --set "scene.manifolds=cells 0: transfinite"
 check "scene.goals" -- "$mesh" --set "scene.goals=point 9, 9"

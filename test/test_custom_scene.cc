@@ -147,6 +147,12 @@ TEST(CustomScene, MeshFileWithManifoldsGivesHemkersMesh)
       {"custom_hemker.json", "boundary 1: polar 0, 0", "expected one circle about the centre"},
       {"custom_hemker.json", "boundary 4: polar 0.1, 0", "expected one circle about the centre"},
       {"custom_hemker.json", "boundary 4: transfinite", "in key 'scene.manifolds'; expected"},
+      // polar cells about a wrong centre would bend the walls; about the right one the
+      // square (-3,3)^2 around the hole is still neither arcs nor radial lines
+      {"custom_hemker.json", "boundary 4: polar 0, 0; cells 10: polar 5, 5",
+       "is neither an arc about (5, 5)"},
+      {"custom_hemker.json", "boundary 4: polar 0, 0; cells 10: polar 0, 0",
+       "expected cells whose lines are arcs about the centre or radial"},
       {"custom_example.json", "cells 0: transfinite", "key 'scene.manifolds' is for a mesh file"}};
   for (const auto &[config, item, message] : bad)
   {

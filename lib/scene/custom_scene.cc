@@ -242,6 +242,7 @@ void CustomScene::Geometry::build(const SceneOptions &o, std::string &domain)
                        "mesh file (scene.mesh_file); the generator scene.grid = '" +
                        o.custom.grid + "' attaches its own manifolds");
     const std::string &name = o.custom.grid, &args = o.custom.grid_arguments;
+    check_repetitions(name, args, o.source("scene.grid_arguments"));
     try
     {
       GridGenerator::generate_from_name_and_arguments(coarse, name, args);

@@ -6,6 +6,7 @@
 #include <deal.II/grid/tria_iterator.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <numeric>
 #include <set>
@@ -61,6 +62,18 @@ void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
     {
       lo[d] = std::min(lo[d], vertices[v][d]);
       hi[d] = std::max(hi[d], vertices[v][d]);
+    }
+  // coordinates whose squares, areas and quadrature weights overflow or lose every digit
+  constexpr double largest = 1e8;
+  for (unsigned int d = 0; d < 2; ++d)
+    if (!std::isfinite(lo[d]) || !std::isfinite(hi[d]) ||
+        std::max(std::abs(lo[d]), std::abs(hi[d])) > largest)
+    {
+      std::ostringstream v;
+      v << (std::abs(lo[d]) > std::abs(hi[d]) ? lo[d] : hi[d]);
+      throw InputError(head + " has a vertex coordinate " + (d == 0 ? "x" : "y") + " = " +
+                       v.str() + " beyond 1e8 in size; expected a domain within [-1e8, 1e8]^2 "
+                       "(rescale x, and eps, b and the data with it)");
     }
   const double tol = 1e-12 * lo.distance(hi);
 
@@ -183,5 +196,41 @@ void check_msh_node_tags(std::istream &in, const std::string &prefix)
         in >> x;
     }
   }
+}
+void check_repetitions(const std::string &name, const std::string &arguments,
+                       const std::string &where)
+{
+  const std::size_t count = name == "subdivided_hyper_rectangle" ? 2
+                            : name == "subdivided_hyper_cube"     ? 1
+                                                                  : 0;
+  if (count == 0)
+    return;
+  const std::string first = arguments.substr(0, arguments.find(':'));
+  std::vector<std::string> numbers;
+  std::istringstream in(first);
+  for (std::string item; std::getline(in, item, ',');)
+  {
+    const auto a = item.find_first_not_of(" \t"), b = item.find_last_not_of(" \t");
+    numbers.push_back(a == std::string::npos ? "" : item.substr(a, b - a + 1));
+  }
+  double cells = 1;
+  bool whole = numbers.size() == count;
+  for (const std::string &n : numbers)
+  {
+    whole = whole && !n.empty() && n.size() <= 9 &&
+            n.find_first_not_of("0123456789") == std::string::npos && std::stoul(n) >= 1;
+    if (whole)
+      cells *= std::stod(n);
+  }
+  if (!whole || cells > 1e6)
+    throw InputError(where + ": key 'scene.grid_arguments' = '" + arguments + "': the " +
+                     name + " repetitions '" + first + "' " +
+                     (whole ? "ask for " + std::to_string(static_cast<long long>(cells)) +
+                                  " cells"
+                            : std::string("are not ") + (count == 2 ? "two" : "one") +
+                                  " whole number" + (count == 2 ? "s" : "") + " >= 1") +
+                     "; expected " + (count == 2 ? "two whole numbers 'nx, ny'" : "one whole number n") +
+                     " >= 1 with at most 1e6 cells (refine further with "
+                     "discretization.initial_refinements)");
 }
 } // namespace anisodwr

@@ -15,6 +15,8 @@ namespace anisodwr
 /// - has a cell that is not a quadrilateral;
 /// - has two vertices at one point (a crack: the cells on either side do not share
 ///   them, so the interface becomes boundary);
+/// - has a vertex coordinate that is not finite or beyond 1e8 in size (areas and
+///   quadrature weights overflow or lose their digits);
 /// - has a vertex inside a boundary face of another cell (a hanging coarse node: the
 ///   coarse mesh must be conforming);
 /// - has a cell with a corner whose two edges do not turn counter-clockwise by more than
@@ -27,4 +29,12 @@ void check_coarse_mesh(const dealii::Triangulation<2> &tria, const std::string &
 /// (ASCII format 2 or 4) is defined twice (deal.II keeps the last definition). Reads
 /// `in` to its end; binary files and files without a $Nodes section pass.
 void check_msh_node_tags(std::istream &in, const std::string &prefix);
+
+/// Throws InputError("<where>: key 'scene.grid_arguments' ...") if the generator `name`
+/// is subdivided_hyper_rectangle or subdivided_hyper_cube and its first argument (the
+/// repetitions: two whole numbers, or one) is not whole numbers >= 1 or asks for more
+/// than 1e6 cells. Checked before the generator runs: deal.II would read -1 as 2^32 - 1
+/// and a single number as the first of two, and allocate the cells.
+void check_repetitions(const std::string &name, const std::string &arguments,
+                       const std::string &where);
 } // namespace anisodwr

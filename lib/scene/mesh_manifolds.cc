@@ -16,6 +16,61 @@ namespace anisodwr
 {
 using namespace dealii;
 
+namespace
+{
+/// Each line of the cells of a `cells ids: polar x, y` item (but for boundary lines a
+/// boundary item claims) must be an arc about the centre (its ends equally far from it)
+/// or radial (its ends in one direction from it): PolarManifold bends any other line
+/// into a spiral, which turns a straight wall into a curve the mesh never had.
+void check_polar_cells(const std::vector<ManifoldItem> &items,
+                       const Triangulation<2, 2> &mesh, const std::string &where)
+{
+  const auto has = [](const ManifoldItem &m, unsigned int id)
+  { return std::find(m.ids.begin(), m.ids.end(), id) != m.ids.end(); };
+  for (const ManifoldItem &m : items)
+  {
+    if (!m.on_cells || !m.polar)
+      continue;
+    for (const auto &cell : mesh.active_cell_iterators())
+    {
+      if (!has(m, cell->material_id()))
+        continue;
+      for (const auto &face : cell->face_iterators())
+      {
+        if (face->at_boundary() &&
+            std::any_of(items.begin(), items.end(), [&](const ManifoldItem &b)
+                        { return !b.on_cells && has(b, face->boundary_id()); }))
+          continue;
+        const Tensor<1, 2> a = face->vertex(0) - m.center, b = face->vertex(1) - m.center;
+        const double ra = a.norm(), rb = b.norm(), tol = 1e-8 * std::max(ra, rb);
+        const bool arc = std::abs(ra - rb) <= tol;
+        const bool radial = std::abs(a[0] * b[1] - a[1] * b[0]) <= tol * std::max(ra, rb) &&
+                            a * b >= 0;
+        if (!arc && !radial)
+        {
+          std::ostringstream d;
+          const auto xy = [](const Point<2> &p)
+          {
+            std::ostringstream o;
+            o << "(" << p[0] << ", " << p[1] << ")";
+            return o.str();
+          };
+          d << "the line from " << xy(face->vertex(0)) << " to " << xy(face->vertex(1))
+            << " of these cells is neither an arc about " << xy(m.center)
+            << " (its ends lie at distances " << ra << " and " << rb
+            << " from it) nor radial";
+          throw InputError(where + ": invalid item '" + m.text +
+                           "' in key 'scene.manifolds': " + d.str() +
+                           "; expected cells whose lines are arcs about the centre or "
+                           "radial (use 'cells ids: transfinite' for cells between a "
+                           "circle and straight lines)");
+        }
+      }
+    }
+  }
+}
+} // namespace
+
 std::vector<ManifoldItem> parse_manifolds(const std::string &text,
                                           const Triangulation<2, 2> &mesh,
                                           const std::string &where,
@@ -98,8 +153,10 @@ std::vector<ManifoldItem> parse_manifolds(const std::string &text,
     }
     else
       throw InputError(bad);
+    m.text = item;
     items.push_back(m);
   }
+  check_polar_cells(items, mesh, where);
   return items;
 }
 

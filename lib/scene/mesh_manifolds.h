@@ -23,11 +23,14 @@ struct ManifoldItem
   std::vector<unsigned int> ids;
   bool polar = true; ///< a PolarManifold about `center`, else transfinite (cells only)
   dealii::Point<2> center;
+  std::string text; ///< the item as written, for messages
 };
 
 /// Reads scene.manifolds (items separated by ';') and checks its ids against `mesh`;
 /// throws InputError "<where>: invalid item ... in key 'scene.manifolds'; ..." naming
-/// the mesh's ids where an id is not in it.
+/// the mesh's ids where an id is not in it, where a boundary item's faces are not on one
+/// circle about its centre, and where a polar cells item's lines are neither arcs about
+/// the centre nor radial.
 std::vector<ManifoldItem> parse_manifolds(const std::string &text,
                                           const dealii::Triangulation<2, 2> &mesh,
                                           const std::string &where,
