@@ -166,6 +166,19 @@ check "scene.mesh_file" -- "$mesh" --set "scene.mesh_file=$src/README.md"
 check "scene.grid" -- "$example" --set "scene.grid_arguments=0 : 1"
 check "scene.manifolds" -- "$mesh" --set "scene.manifolds=boundary 9: polar 0, 0"
 check "scene.manifolds" -- "$mesh" --set "scene.manifolds=cells 10: polar 0"
+# a constant's name longer than muparser takes: blamed on scene.constants, not on the first
+# expression that uses the constants
+check "(a name of 20000 characters) in key 'scene.constants'" -- "$example" \
+  --set "scene.constants=$(printf 'a%.0s' $(seq 20000)) = 2"
+# the default goal point in a hole: the cause, not a radius
+check "key 'scene.goals': goal u_center_T is centred at (0, 0), outside the domain" -- "$example" \
+  --set scene.grid=hyper_shell --set "scene.grid_arguments=0, 0 : 0.5 : 1 : 8 : true" \
+  --set "scene.dirichlet=0, 1: 0" --set scene.neumann= --set scene.exact_solution= --set scene.goals=
+# an exact flux on a curved boundary: the key and its source
+check "key 'scene.goals': goal 'f' (a flux through boundary id 4, which is curved" -- \
+  "$src/config/custom_hemker.json" --set "scene.exact_solution=x" --set "scene.rhs=1" \
+  --set "scene.dirichlet=1, 4: x" --set "scene.neumann=2: eps; 3: 0" --set "scene.initial_value=x" \
+  --set "scene.goals=f = flux 4" --set goal.reference=
 # polar cells about a wrong centre bend straight walls into spirals
 check "is neither an arc about" -- "$mesh" --set "scene.manifolds=cells 10: polar 5, 5"
 # repetitions that deal.II reads as 2^32 - 1 or as the first of two (memory), and a

@@ -228,8 +228,12 @@ public:
         if (cell->face(f)->at_boundary() && gamma.count(cell->face(f)->boundary_id()))
         {
           if (cell->face(f)->manifold_id() != numbers::flat_manifold_id)
-            throw InputError("goal '" + g.name +
-                             "': the exact flux is computed on straight faces only");
+            throw InputError(
+                "goal '" + g.name + "' (a flux through boundary id " +
+                std::to_string(cell->face(f)->boundary_id()) +
+                ", which is curved: it carries a manifold) has no exact value: the exact "
+                "flux is integrated over straight faces only; expected a flux goal on "
+                "straight boundaries, or no scene.exact_solution");
           const Point<2> a = cell->face(f)->vertex(0), b = cell->face(f)->vertex(1);
           const Tensor<1, 2> normal = outer_normal(cell, f);
           const double length = a.distance(b);

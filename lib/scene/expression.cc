@@ -172,6 +172,14 @@ Constants parse_constants(const std::string &text, const Constants &predefined,
       throw InputError(where + ": invalid definition '" + item + "' in key '" + key +
                        "'; expected name = value with a name of letters, digits and _ "
                        "(not starting with a digit)");
+    // muparser refuses longer identifiers, and would blame the first expression using
+    // the constants instead of this key
+    constexpr std::size_t longest = 64;
+    if (name.size() > longest)
+      throw InputError(where + ": invalid definition '" + name.substr(0, 20) + "... = ...' (a name of " +
+                       std::to_string(name.size()) + " characters) in key '" + key +
+                       "'; expected names of at most " + std::to_string(longest) +
+                       " characters");
     for (const std::string reserved : {"x", "y", "t", "nx", "ny"})
       if (name == reserved)
         throw InputError(where + ": invalid definition '" + item + "' in key '" + key +

@@ -86,7 +86,15 @@ void AdaptiveLoop::run()
     check_initial_mesh_memory(prm, *scene, tria.n_active_cells(), q, goals.size(),
                               mem_limit);
     for (std::size_t g = 0; g < goals.size(); ++g)
-      J_exact[g] = scene->exact() ? exact_goal(*scene, goals[g]) : goals[g].reference;
+      try
+      {
+        J_exact[g] = scene->exact() ? exact_goal(*scene, goals[g]) : goals[g].reference;
+      }
+      catch (const InputError &e)
+      {
+        const std::string key = prm.scene.name == "custom" ? "scene.goals" : "goal.kind";
+        throw InputError(prm.source(key) + ": key '" + key + "': " + e.what());
+      }
     print_run_line(std::cout, prm, *scene, q, goals, J_exact, has_exact,
                    mapping_degree(prm, tria));
     print_loop_header(std::cout);

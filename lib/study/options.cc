@@ -19,7 +19,10 @@ SceneOptions scene_options(const Parameters &prm)
 GoalInput goal_input(const Parameters &prm)
 {
   GoalInput in = prm.goal;
-  in.locations_source = prm.source("goal.locations");
+  // a custom scene's own goals (goal.kind = scene) are placed by scene.goals
+  in.locations_source = prm.scene.name == "custom" && in.kind == "scene"
+                            ? prm.source("scene.goals")
+                            : prm.source("goal.locations");
   in.radius_source = prm.source("goal.radius");
   in.weights_source = prm.source("goal.weights");
   in.reference_source = prm.source("goal.reference");
