@@ -241,7 +241,8 @@ void check_goal_weights(const Space<2> &space, const std::vector<GoalSpec> &goal
   {
     const GoalSpec g = unweighted(goal);
     double w = 0;
-    if (!goal_weight_resolved(space, g, scene, w) && g.center.size() == 2 &&
+    const bool resolved = goal_weight_resolved(space, g, scene, w);
+    if (!resolved && g.center.size() == 2 &&
         !inside(space, Point<2>(g.center[0], g.center[1])))
     {
       const bool custom = scene.name() == "custom" && in.kind == "scene";
@@ -254,7 +255,7 @@ void check_goal_weights(const Space<2> &space, const std::vector<GoalSpec> &goal
                     "bounding box)"
                   : ""));
     }
-    if (!goal_weight_resolved(space, g, scene, w))
+    if (!resolved)
       throw InputError(goal_type(g.kind).unresolved(
           space, g, in, scene,
           "the weight of goal " + g.name + " integrates to " + six_digits(w) +

@@ -1,13 +1,14 @@
 #include "scene/mesh_check.h"
 
 #include "base/errors.h"
+#include "base/text.h"
 
 #include <deal.II/grid/tria_accessor.h>
 #include <deal.II/grid/tria_iterator.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -206,13 +207,7 @@ void check_repetitions(const std::string &name, const std::string &arguments,
   if (count == 0)
     return;
   const std::string first = arguments.substr(0, arguments.find(':'));
-  std::vector<std::string> numbers;
-  std::istringstream in(first);
-  for (std::string item; std::getline(in, item, ',');)
-  {
-    const auto a = item.find_first_not_of(" \t"), b = item.find_last_not_of(" \t");
-    numbers.push_back(a == std::string::npos ? "" : item.substr(a, b - a + 1));
-  }
+  const std::vector<std::string> numbers = split_ws(first, ',');
   double cells = 1;
   bool whole = numbers.size() == count;
   for (const std::string &n : numbers)

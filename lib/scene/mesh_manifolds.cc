@@ -18,6 +18,12 @@ using namespace dealii;
 
 namespace
 {
+/// Whether the item lists the (material or boundary) id.
+bool lists(const ManifoldItem &m, unsigned int id)
+{
+  return std::find(m.ids.begin(), m.ids.end(), id) != m.ids.end();
+}
+
 /// Each line of the cells of a `cells ids: polar x, y` item (but for boundary lines a
 /// boundary item claims) must be an arc about the centre (its ends equally far from it)
 /// or radial (its ends in one direction from it): PolarManifold bends any other line
@@ -25,21 +31,19 @@ namespace
 void check_polar_cells(const std::vector<ManifoldItem> &items,
                        const Triangulation<2, 2> &mesh, const std::string &where)
 {
-  const auto has = [](const ManifoldItem &m, unsigned int id)
-  { return std::find(m.ids.begin(), m.ids.end(), id) != m.ids.end(); };
   for (const ManifoldItem &m : items)
   {
     if (!m.on_cells || !m.polar)
       continue;
     for (const auto &cell : mesh.active_cell_iterators())
     {
-      if (!has(m, cell->material_id()))
+      if (!lists(m, cell->material_id()))
         continue;
       for (const auto &face : cell->face_iterators())
       {
         if (face->at_boundary() &&
             std::any_of(items.begin(), items.end(), [&](const ManifoldItem &b)
-                        { return !b.on_cells && has(b, face->boundary_id()); }))
+                        { return !b.on_cells && lists(b, face->boundary_id()); }))
           continue;
         const Tensor<1, 2> a = face->vertex(0) - m.center, b = face->vertex(1) - m.center;
         const double ra = a.norm(), rb = b.norm(), tol = 1e-8 * std::max(ra, rb);
@@ -133,8 +137,7 @@ std::vector<ManifoldItem> parse_manifolds(const std::string &text,
       {
         double r_min = std::numeric_limits<double>::max(), r_max = 0;
         for (const auto &face : mesh.active_face_iterators())
-          if (face->at_boundary() &&
-              std::find(m.ids.begin(), m.ids.end(), face->boundary_id()) != m.ids.end())
+          if (face->at_boundary() && lists(m, face->boundary_id()))
             for (unsigned int v = 0; v < 2; ++v)
             {
               r_min = std::min(r_min, face->vertex(v).distance(m.center));
@@ -162,18 +165,16 @@ std::vector<ManifoldItem> parse_manifolds(const std::string &text,
 
 void attach_manifolds(const std::vector<ManifoldItem> &items, Triangulation<2, 2> &tria)
 {
-  const auto has = [](const ManifoldItem &m, unsigned int id)
-  { return std::find(m.ids.begin(), m.ids.end(), id) != m.ids.end(); };
   for (const bool cells : {true, false})
     for (std::size_t k = 0; k < items.size(); ++k)
       if (items[k].on_cells == cells)
         for (const auto &cell : tria.active_cell_iterators())
         {
-          if (cells && has(items[k], cell->material_id()))
+          if (cells && lists(items[k], cell->material_id()))
             cell->set_all_manifold_ids(k);
           if (!cells)
             for (const auto &face : cell->face_iterators())
-              if (face->at_boundary() && has(items[k], face->boundary_id()))
+              if (face->at_boundary() && lists(items[k], face->boundary_id()))
                 face->set_manifold_id(k);
         }
   for (std::size_t k = 0; k < items.size(); ++k)
