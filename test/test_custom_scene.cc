@@ -5,6 +5,7 @@
 #include "config/parameters.h"
 #include "scene/custom_scene.h"
 #include "scene/separable.h"
+#include "space/crosswind_scale.h"
 #include "space/space.h"
 #include "study/options.h"
 
@@ -12,6 +13,8 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/numerics/vector_tools.h>
+#include <deal.II/base/function.h>
 
 #include <gtest/gtest.h>
 
@@ -335,4 +338,46 @@ TEST(Mapping, CurvedBoundaryAreaConvergesAtTheMapsOrder)
   dealii::Triangulation<2> square;
   dealii::GridGenerator::hyper_cube(square);
   EXPECT_EQ(auto_mapping_degree(square, 3), 1u);
+}
+
+// discretization.crosswind_form = residual: s_K = |R(u_h)| / (|b| |grad u_h|) is 0 where
+// u_h solves the transport (a front moving with b, a layer along b), 1 where u_h changes
+// along b against the equation and 1/sqrt(2) for a gradient at 45 degrees to b.
+TEST(CrosswindScale, ResidualOverTransportHasKnownValues)
+{
+  const auto check = [](const std::string &u0, const std::function<double(double, double,
+                                                                          double)> &u,
+                        double expected)
+  {
+    const auto scene = create_scene<2>(Parameters::from_overrides(
+        {"scene.name=custom", "scene.convection=1; 0", "scene.epsilon=1e-3",
+         "scene.initial_value=" + u0}));
+    dealii::Triangulation<2> tria;
+    scene->make_coarse_grid(tria);
+    tria.refine_global(2);
+    Space<2> space(*scene, tria, 1, Stabilization{});
+    space.setup();
+    const std::vector<double> times{0., 0.25, 0.5};
+    std::vector<dealii::Vector<double>> ends;
+    for (std::size_t n = 1; n < times.size(); ++n)
+    {
+      dealii::Vector<double> v(space.n_dofs());
+      const double t = times[n];
+      dealii::VectorTools::interpolate(
+          space.mapping(), space.dof_handler(),
+          dealii::ScalarFunctionFromFunctionObject<2>([&](const Point<2> &x)
+                                                      { return u(x[0], x[1], t); }),
+          v);
+      ends.push_back(v);
+    }
+    const std::vector<double> s = crosswind_scale(space, times, ends);
+    ASSERT_EQ(s.size(), tria.n_active_cells());
+    for (const double v : s)
+      EXPECT_NEAR(v, expected, 1e-12) << "u_0 = " << u0;
+  };
+  check("x", [](double x, double, double t) { return x - t; }, 0.); // moves with b
+  check("y", [](double, double y, double) { return y; }, 0.);       // a layer along b
+  check("x", [](double x, double, double) { return x; }, 1.);       // steady against b
+  check("x + y", [](double x, double y, double) { return x + y; }, 1. / std::sqrt(2.));
+  check("1", [](double, double, double) { return 1.; }, 0.); // constant: no gradient
 }

@@ -115,7 +115,8 @@ struct Problem
   /// `variant` poly_space: b, alpha depend on t; constant: they do not (the estimator
   /// then applies A and S' through cell matrices). A suffix "+crosswind" adds the
   /// crosswind diffusion (crosswind0 = 0.8) to the stabilized space, with eps = 1e-3 so
-  /// that it acts on every cell.
+  /// that it acts on every cell; "+crosswind_scaled" scales it per cell by factors
+  /// 0.2-1 (Space::set_crosswind_scale, crosswind_form = residual).
   Problem(unsigned int p, unsigned int r, const std::string &variant = "poly_space")
       : scene(create_scene<2>(Parameters::from_overrides(
             {"scene.name=manufactured", "scene.variant=" + base_variant(variant),
@@ -129,6 +130,14 @@ struct Problem
     Stabilization stab{0.7, SupgLength::volume, 0.};
     stab.crosswind0 = crosswind(variant) ? 0.8 : 0.;
     supg = std::make_unique<Space<2>>(*scene, tria, p, stab);
+    if (variant.find("+crosswind_scaled") != std::string::npos)
+    {
+      // crosswind_form = residual: a different factor on each cell
+      std::vector<double> scale(tria.n_active_cells());
+      for (std::size_t k = 0; k < scale.size(); ++k)
+        scale[k] = 0.2 + 0.8 * double(k % 5) / 4.;
+      supg->set_crosswind_scale(scale);
+    }
     for (const auto &cell : tria.active_cell_iterators())
       if (crosswind(variant) && !(supg->crosswind(cell).eps > 0.))
         throw std::logic_error("the crosswind term must act on every cell");
@@ -222,17 +231,20 @@ TEST_P(AdjointLocalization, AdjointFormsSumToGlobalForms)
   }
 }
 
-// "+crosswind": the crosswind diffusion of the stabilized space is part of S and S'
+// "+crosswind": the crosswind diffusion of the stabilized space is part of S and S';
+// "+crosswind_scaled" with a per-cell factor on it
 INSTANTIATE_TEST_SUITE_P(TemporalDegreeAndCoefficients, Localization,
                          ::testing::Combine(::testing::Values(0u, 1u, 2u),
                                             ::testing::Values("poly_space", "constant",
                                                               "poly_space+crosswind",
-                                                              "constant+crosswind")));
+                                                              "constant+crosswind",
+                                                              "constant+crosswind_scaled")));
 INSTANTIATE_TEST_SUITE_P(TemporalDegreeAndCoefficients, AdjointLocalization,
                          ::testing::Combine(::testing::Values(0u, 1u, 2u),
                                             ::testing::Values("poly_space", "constant",
                                                               "poly_space+crosswind",
-                                                              "constant+crosswind")));
+                                                              "constant+crosswind",
+                                                              "constant+crosswind_scaled")));
 
 // TimeIndicator::higher_order: eta_tau = rho*(u, z)(u_r+1 - u) + J_T(u_r+1(T) - u(T)).
 // Heat with u = (x^2 - x)(y^2 - y)(-t/4): Q2 in space, linear in t, so dG(1) (u_r+1)

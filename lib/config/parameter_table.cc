@@ -207,6 +207,13 @@ std::vector<Entry> discretization_entries()
        "h_cw,K the cell's length across b at its centre (zero on cells that resolve "
        "the crosswind direction). Damps oscillations at characteristic layers; not "
        "consistent (doc/method.md §3). 0: off."},
+      {"discretization", "crosswind_form", "linear", m(&S::crosswind_form), by_name,
+       "Where the crosswind term acts: linear = on every cell as crosswind0 says; "
+       "residual = scaled per cell by s_K = min(1, |R(u_h)| / (|b| |grad u_h|)) of the "
+       "previous DWR loop's solution (R the strong residual, integrated over the cell and "
+       "the slab ends), so that it stays where u_h changes along b against the equation "
+       "and vanishes on layers along b and on resolved solutions (doc/method.md §3). The "
+       "first loop, and runs outside study.mode = dwr, use linear."},
       {"discretization", "supg_tau_factor", "1", m(&S::supg_tau_factor), real(0.),
        "Bound delta_K <= supg_tau_factor * tau_n on each slab (tau_n its length), the "
        "stability condition of SUPG whose test function also multiplies du/dt; 0 drops "

@@ -124,7 +124,12 @@ Space<dim>::crosswind(const typename Triangulation<dim>::cell_iterator &cell) co
   Tensor<1, dim> across;
   across[0] = -b[1] / nb;
   across[1] = b[0] / nb;
-  return {stab.crosswind0 * std::max(0., 0.5 * nb * length_along(cell, across) - scene.epsilon),
+  const double scale =
+      cw_scale.empty() || !cell->is_active() ? 1. : cw_scale[cell->active_cell_index()];
+  if (scale == 0.)
+    return {};
+  return {scale * stab.crosswind0 *
+              std::max(0., 0.5 * nb * length_along(cell, across) - scene.epsilon),
           b};
 }
 

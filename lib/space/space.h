@@ -107,6 +107,10 @@ public:
     dealii::Tensor<1, dim> b;
   };
   Crosswind crosswind(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
+  /// A factor in [0, 1] on each active cell's crosswind diffusion, by active cell index
+  /// (Stabilization::crosswind_form = residual: crosswind_scale() of a previous
+  /// solution). Empty: 1 on every cell. Set before the first assembly.
+  void set_crosswind_scale(std::vector<double> scale) { cw_scale = std::move(scale); }
   /// Whether delta_K (and so M, A and the loads) depends on the slab length.
   bool delta_depends_on_tau() const { return stab.supg_tau_factor > 0 && stab.delta0 > 0; }
 
@@ -117,6 +121,7 @@ private:
   double length_along(const typename dealii::Triangulation<dim>::cell_iterator &cell,
                       const dealii::Tensor<1, dim> &beta) const;
   const Stabilization stab;
+  std::vector<double> cw_scale;
   std::function<bool(dealii::types::global_dof_index)> downstream;
   dealii::FE_Q<dim> fe;
   dealii::MappingQ<dim> map;

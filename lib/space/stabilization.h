@@ -23,6 +23,20 @@ inline const std::vector<Named<SupgLength>> &names(SupgLength)
   return table;
 }
 
+/// How the crosswind diffusion is switched on (Stabilization::crosswind_form).
+enum class CrosswindForm
+{
+  linear,
+  residual
+};
+
+inline const std::vector<Named<CrosswindForm>> &names(CrosswindForm)
+{
+  static const std::vector<Named<CrosswindForm>> table{{CrosswindForm::linear, "linear"},
+                                                       {CrosswindForm::residual, "residual"}};
+  return table;
+}
+
 struct Stabilization
 {
   /// delta_K = delta0 h_K; 0 turns SUPG off
@@ -34,6 +48,9 @@ struct Stabilization
   /// crosswind diffusion eps_cw,K = crosswind0 max(0, |b| h_cw,K / 2 - eps) across b
   /// (h_cw,K: the length of K across b at its centre); 0 turns it off
   double crosswind0 = 0.;
+  /// linear: eps_cw,K as above on every cell; residual: times a factor s_K in [0, 1] set
+  /// per cell from a previous solution (Space::set_crosswind_scale, crosswind_scale.h)
+  CrosswindForm crosswind_form = CrosswindForm::linear;
   /// Bound delta_K <= h_min,K^2 / (eps q^4) (h_min,K the shortest distance of two
   /// vertices of K, q the degree): keeps the SUPG term's eps Lap part below the
   /// diffusion (the inverse estimate |Lap v|_K <= q^2/h_min,K |grad v|_K), which on thin

@@ -17,9 +17,11 @@
 #include "study/probes.h"
 
 #include <deal.II/base/timer.h>
+#include <deal.II/grid/cell_id.h>
 #include <deal.II/grid/tria.h>
 
 #include <future>
+#include <map>
 #include <limits>
 #include <memory>
 #include <string>
@@ -115,6 +117,11 @@ private:
   MarkingOptions marking;
   /// per active cell, the cut that adaptivity.bound_refinement adds (cells_out_of_bounds)
   std::vector<unsigned char> bound_cuts;
+  /// discretization.crosswind_form = residual: the crosswind factor s_K of the last
+  /// loop's solution (crosswind_scale) by cell; a cell of the next mesh takes its own or
+  /// its nearest ancestor's (1 where neither is known, e.g. on the first loop)
+  std::map<CellId, double> crosswind_by_cell;
+  std::vector<double> crosswind_scale_of_mesh() const;
   Triangulation<2> tria;
   TimeMesh mesh;
   const TemporalBasis basis;

@@ -4,6 +4,8 @@
 #include "study/options.h"
 #include "study/time_error.h"
 
+#include "space/crosswind_scale.h"
+
 #include "base/blas_threads.h"
 #include "base/errors.h"
 #include "base/mpi.h"
@@ -38,6 +40,14 @@ Balance balance(const LoopRow &row, const AdaptivitySection &a)
   const double space = row.eta_space_abs(), time = row.eta_time_abs();
   const bool time_refined = a.theta_tau > 0 && time >= a.time_balance * space;
   return {!time_refined || space >= a.time_balance * time, time_refined};
+}
+
+/// Whether the loops switch the crosswind term by the last loop's residual
+/// (discretization.crosswind_form = residual with crosswind0 > 0).
+bool residual_crosswind(const Parameters &prm)
+{
+  return prm.discretization.crosswind0 > 0 &&
+         prm.discretization.crosswind_form == CrosswindForm::residual;
 }
 
 /// The scene of the run, with the output directory created first.
@@ -155,6 +165,9 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   release_free_memory();
   const auto primal_space = make_space(prm, *scene, tria, prm.discretization.p);
   const auto adjoint_space = make_adjoint_space(prm, *scene, tria, q);
+  const std::vector<double> cw_scale = crosswind_scale_of_mesh();
+  primal_space->set_crosswind_scale(cw_scale);
+  adjoint_space->set_crosswind_scale(cw_scale);
   const Space<2> &primal = *primal_space, &adjoint = *adjoint_space;
   if (row.loop == 1)
     check_goal_weights(primal, goals, goal_input(prm), *scene);
@@ -245,7 +258,11 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   if (prm.adaptivity.measure_time_error)
     measure_time_error(
         [&](double tau_scale)
-        { return make_space(prm, *scene, tria, prm.discretization.p, tau_scale); },
+        {
+          auto space = make_space(prm, *scene, tria, prm.discretization.p, tau_scale);
+          space->set_crosswind_scale(cw_scale);
+          return space;
+        },
         mesh, basis, slab_solver_options(prm), goals, opt, row);
   copy_indicators(ind, row);
   std::vector<double> ar_cell;
@@ -255,6 +272,16 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   Vector<double> uT;
   combine_blocks(U.back(), basis.right_trace(), uT);
   write_loop_outputs(prm, *scene, probe_spec, row, primal, uT, ind, ar_cell, vtu_records);
+  if (residual_crosswind(prm))
+  {
+    std::vector<Vector<double>> ends(U.size());
+    for (std::size_t n = 0; n < U.size(); ++n)
+      combine_blocks(U[n], basis.right_trace(), ends[n]);
+    const std::vector<double> s = crosswind_scale(primal, mesh.t, ends);
+    crosswind_by_cell.clear();
+    for (const auto &cell : tria.active_cell_iterators())
+      crosswind_by_cell[cell->id()] = s[cell->active_cell_index()];
+  }
   bound_cuts.clear();
   const double bound_fraction = prm.adaptivity.bound_refinement;
   if (bound_fraction > 0)
@@ -279,6 +306,26 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
     }
   }
   return true;
+}
+
+std::vector<double> AdaptiveLoop::crosswind_scale_of_mesh() const
+{
+  if (crosswind_by_cell.empty())
+    return {};
+  std::vector<double> scale(tria.n_active_cells(), 1.);
+  for (const auto &cell : tria.active_cell_iterators())
+    for (auto c = Triangulation<2>::cell_iterator(cell);; c = c->parent())
+    {
+      const auto it = crosswind_by_cell.find(c->id());
+      if (it != crosswind_by_cell.end())
+      {
+        scale[cell->active_cell_index()] = it->second;
+        break;
+      }
+      if (c->level() == 0)
+        break;
+    }
+  return scale;
 }
 
 bool AdaptiveLoop::stop_after(const LoopRow &row)

@@ -1,0 +1,72 @@
+#include "space/crosswind_scale.h"
+#include "space/weak_form.h"
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace anisodwr
+{
+using namespace dealii;
+
+template <int dim>
+std::vector<double> crosswind_scale(const Space<dim> &space, const std::vector<double> &times,
+                                    const std::vector<Vector<double>> &ends)
+{
+  const Scene<dim> &scene = space.scene;
+  const DoFHandler<dim> &dofs = space.dof_handler();
+  const QGauss<dim> quad(space.degree() + 1);
+  FEValues<dim> fv(space.mapping(), space.finite_element(), quad,
+                   update_values | update_gradients | update_hessians |
+                       update_quadrature_points | update_JxW_values);
+  const unsigned int nq = quad.size();
+  std::vector<double> u(nq), u_prev(nq), lap(nq);
+  std::vector<Tensor<1, dim>> grad(nq);
+  const std::size_t n_cells = dofs.get_triangulation().n_active_cells();
+  std::vector<double> residual(n_cells, 0.), transport(n_cells, 0.), scale(n_cells, 0.);
+  // |b| |grad u_h| below 1e-10 |b|_max max|u_h| / diam(domain) is round-off (u_h constant)
+  double u_max = 0., b_max = 0.;
+  for (const auto &v : ends)
+    u_max = std::max(u_max, v.linfty_norm());
+  for (const auto &cell : dofs.active_cell_iterators())
+  {
+    fv.reinit(cell);
+    for (unsigned int q = 0; q < nq; ++q)
+      u_prev[q] = scene.initial_value(fv.quadrature_point(q));
+    const unsigned int k = cell->active_cell_index();
+    for (std::size_t n = 0; n < ends.size(); ++n)
+    {
+      const double t = times[n + 1], tau = times[n + 1] - times[n];
+      fv.get_function_values(ends[n], u);
+      fv.get_function_gradients(ends[n], grad);
+      fv.get_function_laplacians(ends[n], lap);
+      for (unsigned int q = 0; q < nq; ++q)
+      {
+        const Point<dim> &x = fv.quadrature_point(q);
+        const auto c = weak_form::coefficients(scene, x, t);
+        const double r = weak_form::residual(c, scene.rhs(x, t), (u[q] - u_prev[q]) / tau,
+                                             u[q], grad[q], lap[q]);
+        residual[k] += tau * std::abs(r) * fv.JxW(q);
+        b_max = std::max(b_max, c.b.norm());
+        transport[k] += tau * c.b.norm() * grad[q].norm() * fv.JxW(q);
+      }
+      std::swap(u, u_prev);
+    }
+  }
+  const double floor = 1e-10 * b_max * u_max * (times.back() - times.front()) /
+                       GridTools::diameter(dofs.get_triangulation());
+  for (const auto &cell : dofs.active_cell_iterators())
+  {
+    const unsigned int k = cell->active_cell_index();
+    if (transport[k] > floor * cell->measure())
+      scale[k] = std::min(1., residual[k] / transport[k]);
+  }
+  return scale;
+}
+
+template std::vector<double> crosswind_scale<2>(const Space<2> &, const std::vector<double> &,
+                                                const std::vector<Vector<double>> &);
+} // namespace anisodwr
