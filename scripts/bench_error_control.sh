@@ -8,13 +8,16 @@
 # of eta_h and eta_tau at the stop, wall time) and the chart OUTDIR/error_control.png.
 # Usage: scripts/bench_error_control.sh [OUTDIR] [PROBLEM ...]   (default: all)
 # Env: LOOPS (default 40), the loop limit beside the tolerance; MAX_WALL (default 300 s),
-# adaptivity.max_wall_time of each run.
+# adaptivity.max_wall_time of each run; EXTRA_SET (default empty), further key=value
+# overrides given to every run (e.g. "adaptivity.time_balance=0.1"), for a comparison.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 OUT=${1:-$ROOT/results/bench_error_control}
 shift || true
 LOOPS=${LOOPS:-40}
 MAX_WALL=${MAX_WALL:-300}
+extra=()
+for kv in ${EXTRA_SET:-}; do extra+=(--set "$kv"); done
 mkdir -p "$OUT/configs"
 
 # name | tolerance | config: a file in config/ or the scene/discretization/goal sections
@@ -49,7 +52,7 @@ for entry in "${problems[@]}"; do
   start=$(date +%s.%N)
   status=0
   "$BUILD/app/anisodwr" run "$file" --output "$OUT/$name" --set adaptivity.tolerance="$tol" \
-    --set adaptivity.loops="$LOOPS" --set adaptivity.max_wall_time="$MAX_WALL" --set output.vtu_loops=0 --set output.progress=false \
+    --set adaptivity.loops="$LOOPS" --set adaptivity.max_wall_time="$MAX_WALL" --set output.vtu_loops=0 --set output.progress=false "${extra[@]}" \
     >"$OUT/$name.log" 2>&1 || status=$?
   end=$(date +%s.%N)
   tail -n 4 "$OUT/$name.log"
