@@ -204,6 +204,16 @@ else
   echo "ok: unbounded SUPG with the higher-order eta_tau warns: $out"
 fi
 
+# a key without effect: the residual crosswind form with the crosswind term off
+out=$(timeout 60 "$bin" run "$cfg" --output "$tmp/warn_cw" --set adaptivity.loops=1 --set discretization.crosswind_form=residual 2>&1 >/dev/null)
+rc=$?
+if [ "$rc" != 0 ] || ! grep -q "^anisodwr: warning: discretization.crosswind_form = residual has no effect with discretization.crosswind0 = 0" <<<"$out"; then
+  echo "FAIL: crosswind_form = residual without crosswind0 -> exit $rc, stderr: $out"
+  fail=1
+else
+  echo "ok: crosswind_form = residual without crosswind0 warns: $out"
+fi
+
 # out of memory: exit 3 and summary.json
 out=$( (ulimit -v 2500000 && timeout 60 "$bin" run "$cfg" --output "$tmp/oom" --set study.mode=single \
   --set discretization.initial_refinements=13) 2>&1)

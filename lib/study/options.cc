@@ -115,6 +115,9 @@ std::vector<std::string> dwr_warnings(const Parameters &prm)
                 "is not stable on slabs shorter than delta_K, so eta_tau can be wrong by "
                 "orders of magnitude (measured on the moving hump: 2.7e-4 instead of "
                 "-4.5e-6); keep supg_tau_factor > 0 or use time_indicator = average");
+  if (d.crosswind_form == CrosswindForm::residual && d.crosswind0 == 0.)
+    w.push_back("discretization.crosswind_form = residual has no effect with "
+                "discretization.crosswind0 = 0 (the crosswind term is off)");
   return w;
 }
 } // namespace anisodwr
