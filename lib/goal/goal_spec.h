@@ -47,8 +47,10 @@ constexpr double estimate_weight_floor = 1e-2;
 
 /// Relative size below which the lift difference of goal.weights = auto counts as zero.
 constexpr double auto_weight_unseen = 1e-8;
-/// The goal section of a config and, for messages, where goal.locations, goal.radius
-/// and goal.weights came from (a config file's path, "--set" or "default").
+/// The goal section of a config and, for messages, where goal.locations, goal.radius,
+/// goal.weights and goal.reference came from (a config file's path, "--set" or
+/// "default"; for a custom scene locations_source is where scene.goals came from, since
+/// its goals are given there).
 struct GoalInput
 {
   std::string kind = "scene"; ///< scene or the name of a GoalType
