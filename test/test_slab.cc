@@ -3,7 +3,7 @@
 // the FE space in x (hanging nodes, inhomogeneous time-dependent Dirichlet data,
 // Neumann data, time-dependent b and alpha, SUPG on).
 #include "slab/primal_march.h"
-#include "study/errors.h"
+#include "study/error_norms.h"
 #include "study/options.h"
 
 #include <deal.II/base/quadrature_lib.h>

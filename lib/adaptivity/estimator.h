@@ -29,7 +29,7 @@
 // value of the adjoint, z(T^+) = M^{-1} j_T, comes from end_time_representer
 // (slab/adjoint_march.h). The cell integrals are in cell_kernel.h; the localized forms
 // for the tests in localized_forms.cc.
-#include "adaptivity/choices.h"
+#include "adaptivity/adaptivity_keys.h"
 #include "goal/goal.h"
 #include "space/space.h"
 #include "time/temporal_basis.h"

@@ -7,7 +7,7 @@
 // to_json and the unknown-key errors all come from that table. Choice-valued keys are
 // enums with one name table each (base/choice.h). The member initializers below
 // equal the table's defaults (checked by test_parameters).
-#include "adaptivity/choices.h"
+#include "adaptivity/adaptivity_keys.h"
 #include "base/choice.h"
 #include "goal/goal_spec.h"
 #include "scene/scene_options.h"
@@ -102,7 +102,7 @@ struct StudySection
 /// The goal section: the goals' own input (goal/goal_spec.h).
 using GoalSection = GoalInput;
 
-/// The adaptivity section: the marking options (adaptivity/choices.h) and the loop's.
+/// The adaptivity section: the marking options (adaptivity/adaptivity_keys.h) and the loop's.
 struct AdaptivitySection : MarkingOptions
 {
   unsigned int loops = 6;

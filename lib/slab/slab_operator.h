@@ -9,7 +9,7 @@
 // spatial matrices are then assembled once per mesh and the factorization is
 // reused while tau does not change.
 #include "slab/slab_solver_options.h"
-#include "slab/solver_choice.h"
+#include "slab/auto_solver.h"
 #include "solver/direct_solver.h"
 #include "solver/iterative_solver.h"
 #include "solver/mode_solver.h"

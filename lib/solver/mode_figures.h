@@ -1,6 +1,6 @@
 #pragma once
 // The memory figures of one mode-solver factorization (solver/mode_solver.h), read by
-// the memory models (slab/solver_choice.h) without the solver's headers.
+// the memory models (slab/auto_solver.h) without the solver's headers.
 
 namespace anisodwr
 {

@@ -1,7 +1,7 @@
 #include "study/options.h"
 
 #include "adaptivity/refinement.h"
-#include "slab/solver_choice.h"
+#include "slab/auto_solver.h"
 #include "space/space.h"
 
 namespace anisodwr

@@ -6,7 +6,7 @@
 #include "io/vtu.h"
 #include "scene/scene.h"
 #include "slab/primal_march.h"
-#include "study/errors.h"
+#include "study/error_norms.h"
 #include "study/memory_estimate.h"
 #include "study/options.h"
 

@@ -1,4 +1,4 @@
-#include "slab/solver_choice.h"
+#include "slab/auto_solver.h"
 
 #include "solver/temporal_schur.h"
 #include "time/temporal_basis.h"

@@ -1,4 +1,4 @@
-#include "study/errors.h"
+#include "study/error_norms.h"
 
 #include "time/slab_vector.h"
 
