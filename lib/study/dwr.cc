@@ -272,12 +272,21 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   Vector<double> uT;
   combine_blocks(U.back(), basis.right_trace(), uT);
   write_loop_outputs(prm, *scene, probe_spec, row, primal, uT, ind, ar_cell, vtu_records);
+  // u_h at the slab ends, formed once for the crosswind factor and the bound refinement
+  std::vector<Vector<double>> ends;
+  const auto slab_ends = [&]() -> const std::vector<Vector<double>> &
+  {
+    if (ends.empty())
+    {
+      ends.resize(U.size());
+      for (std::size_t n = 0; n < U.size(); ++n)
+        combine_blocks(U[n], basis.right_trace(), ends[n]);
+    }
+    return ends;
+  };
   if (residual_crosswind(prm))
   {
-    std::vector<Vector<double>> ends(U.size());
-    for (std::size_t n = 0; n < U.size(); ++n)
-      combine_blocks(U[n], basis.right_trace(), ends[n]);
-    const std::vector<double> s = crosswind_scale(primal, mesh.t, ends);
+    const std::vector<double> s = crosswind_scale(primal, mesh.t, slab_ends());
     crosswind_by_cell.clear();
     for (const auto &cell : tria.active_cell_iterators())
       crosswind_by_cell[cell->id()] = s[cell->active_cell_index()];
@@ -296,11 +305,8 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
     }
     if (std::isfinite(u_min) && std::isfinite(u_max))
     {
-      std::vector<Vector<double>> ends(U.size());
-      for (std::size_t n = 0; n < U.size(); ++n)
-        combine_blocks(U[n], basis.right_trace(), ends[n]);
       bound_cuts = cells_out_of_bounds<2>(
-          primal.dof_handler(), ends, u_min, u_max, bound_fraction * (u_max - u_min),
+          primal.dof_handler(), slab_ends(), u_min, u_max, bound_fraction * (u_max - u_min),
           bound_cut_aspect,
           [this](const Point<2> &x) { return scene->convection(x, 0.); });
     }
