@@ -5,6 +5,16 @@ Usage: error_control.py OUTDIR NAME [NAME ...]
 Reads OUTDIR/NAME/loops.csv, OUTDIR/NAME/summary.json and OUTDIR/NAME.run (tolerance,
 wall seconds, exit status); writes OUTDIR/error_control.csv (per problem and loop),
 OUTDIR/error_control.md (per problem) and OUTDIR/error_control.png.
+
+I_eff in loops.csv is |eta / (J(u) - J(u_h))|; the table also gives the signed ratio
+eta / (J(u) - J(u_h)) of the combined goal (J(u) - J(u_h) = sum_i w_i (J_i(u) - J_i(u_h))
+from summary.json's per-loop goals), negative where the estimate has the wrong sign, and
+the loops where one goal's own estimate has the wrong sign while its error exceeds
+the tolerance's share TOL/10 (columns err_<goal>, eta_<goal> of loops.csv). With
+adaptivity.measure_time_error (EXTRA_SET) the per-loop CSV also has eta_h / err_h and
+eta_tau / err_tau of the combined goal (err_tau = sum_i w_i err_time_<goal>, err_h =
+err - err_tau), and the table names the loops outside the band whose two parts are each
+within 0.7-1.4: there the parts' errors cancel in their sum.
 """
 import csv
 import json
@@ -35,20 +45,66 @@ def load(out, name):
     return rows, summary, float(tol), float(wall), int(status)
 
 
+def signed_error(loop):
+    """sum_i w_i (J_i(u) - J_i(u_h)) of one loop of summary.json (NaN without J_exact)."""
+    goals = loop.get("goals", {})
+    if not goals:
+        return math.nan
+    return sum(number(g.get("weight")) * (number(g.get("J_exact")) - number(g.get("J_h")))
+               for g in goals.values())
+
+
+def signed_time_error(loop):
+    """sum_i w_i err_tau,i (the goals' measured temporal errors, with
+    adaptivity.measure_time_error; NaN without them)."""
+    goals = loop.get("goals", {})
+    if not goals:
+        return math.nan
+    return sum(number(g.get("weight")) * number(loop.get("err_time_" + n))
+               for n, g in goals.items())
+
+
+def wrong_sign_goals(row, tol, goals):
+    """Goals whose own estimate has the wrong sign where |err| > |J| TOL/10 (goals: the
+    loop's per-goal entries of summary.json)."""
+    out = []
+    for k in row:
+        if k.startswith("err_") and not k.startswith(("err_time_", "err_tau")):
+            g = k[4:]
+            e, eta = row[k], row.get("eta_" + g, math.nan)
+            if e * eta < 0 and abs(e) > 0.1 * tol * abs(number(goals.get(g, {}).get("J_h", 1.0))):
+                out.append(g)
+    return out
+
+
 def main():
     out, names = sys.argv[1], sys.argv[2:]
     per_loop, per_problem = [], []
     for name in names:
         rows, summary, tol, wall, status = load(out, name)
+        by_loop = {int(l["loop"]): l for l in summary.get("loops", [])}
         for r in rows:
+            err = signed_error(by_loop.get(int(r["loop"]), {}))
+            r["I_signed"] = r["eta_tauh"] / err if err else math.nan
+            err_tau = signed_time_error(by_loop.get(int(r["loop"]), {}))
+            r["I_tau"] = r["eta_tau"] / err_tau if err_tau else math.nan
+            r["I_h"] = r["eta_h"] / (err - err_tau) if err != err_tau else math.nan
             per_loop.append([name, int(r["loop"]), int(r["N_space"]), int(r["N_t"]),
                              int(r["N_tot"]), r["J_error"], r["eta_h"], r["eta_tau"],
-                             r["eta_tauh"], r["eta_abs"], r["I_eff"]])
+                             r["eta_tauh"], r["eta_abs"], r["I_eff"], r["I_signed"],
+                             r["I_h"], r["I_tau"]])
         last = rows[-1]
         big = [r for r in rows if r["N_tot"] >= N_TOT_MIN]
-        ieff = [r["I_eff"] for r in big]
-        outside = [int(r["loop"]) for r in big if not BAND[0] <= r["I_eff"] <= BAND[1]]
-        wide = [int(r["loop"]) for r in big if not WIDE[0] <= r["I_eff"] <= WIDE[1]]
+        ieff = [r["I_signed"] for r in big]
+        outside = [int(r["loop"]) for r in big if not BAND[0] <= r["I_signed"] <= BAND[1]]
+        wide = [int(r["loop"]) for r in big if not WIDE[0] <= r["I_signed"] <= WIDE[1]]
+        goals = lambda r: by_loop.get(int(r["loop"]), {}).get("goals", {})
+        # loops outside the band whose time and space parts are each estimated within the
+        # wide band: the parts' errors cancel in the sum (needs measure_time_error)
+        cancel = [int(r["loop"]) for r in big if int(r["loop"]) in outside and
+                  all(WIDE[0] <= r[k] <= WIDE[1] for k in ("I_h", "I_tau"))]
+        wrong = [f'{int(r["loop"])}:{",".join(wrong_sign_goals(r, tol, goals(r)))}'
+                 for r in big if wrong_sign_goals(r, tol, goals(r))]
         eh, et = abs(last["eta_h"]), abs(last["eta_tau"])
         ratio = max(eh, et) / max(min(eh, et), 1e-300)
         balanced = ratio <= 10 or min(eh, et) < tol / 100
@@ -57,17 +113,19 @@ def main():
         per_problem.append({
             "problem": name, "tolerance": tol, "stop": stop, "loops": int(last["loop"]),
             "N_tot": int(last["N_tot"]), "error": err, "error/TOL": err / tol,
-            "eta_abs": last["eta_abs"], "I_eff_last": last["I_eff"],
+            "eta_abs": last["eta_abs"], "I_eff_last": last["I_signed"],
             "I_eff_min": min(ieff) if ieff else math.nan,
             "I_eff_max": max(ieff) if ieff else math.nan,
             "loops_outside_band": " ".join(map(str, outside)) or "-",
+            "parts_in_band": " ".join(map(str, cancel)) or "-",
+            "goal_sign_wrong": " ".join(wrong) or "-",
             "ok": (status == 0 and stop == "tolerance" and err <= 1.25 * tol and
                    len(outside) <= 1 and not wide and balanced),
             "eta_h/eta_tau": eh / max(et, 1e-300), "wall_s": wall})
     with open(os.path.join(out, "error_control.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["problem", "loop", "N_space", "N_t", "N_tot", "J_error", "eta_h",
-                    "eta_tau", "eta_tauh", "eta_abs", "I_eff"])
+                    "eta_tau", "eta_tauh", "eta_abs", "I_eff", "I_eff_signed", "I_h", "I_tau"])
         w.writerows(per_loop)
     keys = list(per_problem[0].keys())
     fmt = lambda v: (f"{v:.3g}" if isinstance(v, float) else str(v))
@@ -87,12 +145,13 @@ def main():
     fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.8))
     for name in names:
         rows = [r for r in per_loop if r[0] == name]
-        a.semilogx([r[4] for r in rows], [r[10] for r in rows], "o-", ms=3, label=name)
+        a.semilogx([r[4] for r in rows], [r[11] for r in rows], "o-", ms=3, label=name)
     a.axhspan(*BAND, color="0.9")
     a.axvline(N_TOT_MIN, color="0.6", ls=":")
-    a.set_ylim(0, 2)
+    a.axhline(0, color="0.6", lw=0.8)
+    a.set_ylim(-1, 2)
     a.set_xlabel("N_tot (space-time DoFs)")
-    a.set_ylabel("I_eff = |eta| / |J(u) - J(u_h)|")
+    a.set_ylabel("I_eff = eta / (J(u) - J(u_h)), signed")
     a.set_title("effectivity per loop (band 0.8-1.25 shaded)")
     a.legend(fontsize=7)
     for p in per_problem:

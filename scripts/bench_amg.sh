@@ -16,7 +16,7 @@
 set -uo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=${ANISODWR_BUILD_DIR:-$ROOT/build}
-BIN=$BUILD/app/anisodwr_bench_solvers
+BIN=$BUILD/bench/anisodwr_bench_solvers
 OUT=${1:-$ROOT/results/bench_amg}
 PARTS=${BENCH_PARTS:-"grid sizes aniso"}
 SLABS=${BENCH_SLABS:-3}

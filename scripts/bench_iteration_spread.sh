@@ -13,7 +13,7 @@
 # Env: FILLS (default "1 2"), INNERS (default "0"), INNER_TOL (default 1e-2).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-BIN=${ANISODWR_BUILD_DIR:-$ROOT/build}/app/anisodwr_bench_solvers
+BIN=${ANISODWR_BUILD_DIR:-$ROOT/build}/bench/anisodwr_bench_solvers
 OUT=${1:-$ROOT/results/bench_iteration_spread}
 mkdir -p "$OUT"
 CSV=$OUT/spread.csv

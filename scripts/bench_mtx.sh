@@ -2,7 +2,7 @@
 # Slab solvers on the matrices a DWR run solves: for each scene and loop, run the DWR
 # loops with output.dump_slab_loop (the first primal and adjoint slab matrix of that
 # loop), then solve each matrix (the adjoint's transposed) with every solver in its own
-# process (app/bench_mtx.cc): UMFPACK and MUMPS (PETSc, factorization reused over the
+# process (bench/bench_mtx.cc): UMFPACK and MUMPS (PETSc, factorization reused over the
 # right-hand sides), GMRES(30) with ILU(1)/ILU(2) on the whole slab matrix, PETSc's
 # BoomerAMG with its defaults, and hypre's BoomerAMG with approximate ideal restriction
 # (AIR-1, AIR-2: one-point interpolation, F-F-C Jacobi post-relaxation). Tolerance 1e-10
@@ -19,7 +19,7 @@ CASES=${CASES:-"hemker_count:10 hemker_count:12 hemker_count:14 moving_hump:10 m
 SOLVERS=${SOLVERS:-"umfpack mumps ilu1 ilu2 boomeramg air1 air2"}
 mkdir -p "$OUT"
 CSV=$OUT/bench_mtx.csv
-echo "scene,loop,problem,N_space,ar_max,$("$BUILD/app/anisodwr_bench_mtx" --header)" >"$CSV"
+echo "scene,loop,problem,N_space,ar_max,$("$BUILD/bench/anisodwr_bench_mtx" --header)" >"$CSV"
 
 solver_args() {
   case $1 in
@@ -51,7 +51,7 @@ PY
     [ "$problem" = adjoint ] && flag=--transpose
     for s in $SOLVERS; do
       # shellcheck disable=SC2046
-      line=$("$BUILD/app/anisodwr_bench_mtx" "$mtx" "$s" $flag $(solver_args "$s") 2>/dev/null |
+      line=$("$BUILD/bench/anisodwr_bench_mtx" "$mtx" "$s" $flag $(solver_args "$s") 2>/dev/null |
         grep "^$s," || echo "$s,,,,,,0,,,")
       echo "$scene,$loop,$problem,$nspace,$ar,$line" | tee -a "$CSV"
     done

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # One slab matrix solved directly: UMFPACK (one process) against MUMPS through PETSc on
-# 1 and 2 MPI ranks (app/bench_mumps.cc), each configuration in its own process(es):
+# 1 and 2 MPI ranks (bench/bench_mumps.cc), each configuration in its own process(es):
 # build, factorization (+ first solve), solve per right-hand side, peak RSS per rank and
 # summed. Prints a Markdown table with the ratios against UMFPACK.
 # Usage: scripts/bench_mumps.sh [OUTDIR]   Env: SIZES = "p:r:refinements ..."
 # (default "1:1:8 1:1:9 2:1:8 1:2:8"), RANKS (default "1 2").
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-BIN=${ANISODWR_BUILD_DIR:-$ROOT/build}/app/anisodwr_bench_mumps
+BIN=${ANISODWR_BUILD_DIR:-$ROOT/build}/bench/anisodwr_bench_mumps
 OUT=${1:-$ROOT/results/bench_mumps}
 mkdir -p "$OUT"
 CSV=$OUT/mumps.csv

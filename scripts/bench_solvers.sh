@@ -17,7 +17,7 @@
 set -uo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=${ANISODWR_BUILD_DIR:-$ROOT/build}
-BIN=$BUILD/app/anisodwr_bench_solvers
+BIN=$BUILD/bench/anisodwr_bench_solvers
 OUT=${1:-$ROOT/results/bench_solvers}
 PARTS=${BENCH_PARTS:-"sizes grid"}
 SLABS=${BENCH_SLABS:-3}
