@@ -3,6 +3,7 @@
 // and expressions are checked, and the Gmsh domain answers contains().
 #include "base/errors.h"
 #include "config/parameters.h"
+#include "goal/goal_input.h"
 #include "scene/custom_scene.h"
 #include "scene/separable.h"
 #include "space/crosswind_scale.h"
@@ -67,7 +68,9 @@ TEST(CustomScene, ReproducesTheMovingHumpsData)
         EXPECT_EQ(custom->reaction(p, t), hump->reaction(p, t));
         EXPECT_EQ(custom->initial_value(p), hump->initial_value(p));
       }
-  const auto a = custom->default_goals(0.01), b = hump->default_goals(0.01);
+  GoalInput in; // goal.kind = scene: scene.goals parsed by the goal layer, radius 0.01
+  in.radius = 0.01;
+  const auto a = make_goals(in, *custom), b = make_goals(in, *hump);
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t g = 0; g < a.size(); ++g)
   {

@@ -1,7 +1,7 @@
 #pragma once
 // The goal's change under the patch lift of the primal: J_i(u~) - J_i(u_h) with
 // u~ = I_2h u_h, whose sign the `auto` goal weights take.
-#include "goal/goal_spec.h"
+#include "scene/goal_spec.h"
 #include "space/space.h"
 #include "time/temporal_basis.h"
 #include "time/time_mesh.h"

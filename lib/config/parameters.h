@@ -9,7 +9,7 @@
 // equal the table's defaults (checked by test_parameters).
 #include "adaptivity/adaptivity_keys.h"
 #include "base/choice.h"
-#include "goal/goal_spec.h"
+#include "scene/goal_spec.h"
 #include "scene/scene_options.h"
 #include "slab/slab_solver_options.h"
 #include "space/stabilization.h"
@@ -99,7 +99,7 @@ struct StudySection
   unsigned int levels = 4;
 };
 
-/// The goal section: the goals' own input (goal/goal_spec.h).
+/// The goal section: the goals' own input (scene/goal_spec.h).
 using GoalSection = GoalInput;
 
 /// The adaptivity section: the marking options (adaptivity/adaptivity_keys.h) and the loop's.

@@ -1,7 +1,7 @@
 #pragma once
 // Linear goal functionals J(u) = int_I j_t(u(t)) dt + j_T(u(T)) (doc/method.md §4) and
 // the mollifier delta_{s,c}(x) = C exp(1 - 1/(1 - |x-c|^2/s^2)) with int delta = 1.
-#include "goal/goal_spec.h"
+#include "scene/goal_spec.h"
 #include "goal/goal_type.h"
 #include "space/space.h"
 #include "time/temporal_basis.h"

@@ -158,7 +158,19 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
 {
   const std::string where = in.locations_source;
   std::vector<GoalSpec> goals;
-  if (in.kind == "scene")
+  const Scene<2>::GoalText text = scene.goal_text();
+  if (in.kind == "scene" && !trim_ws(text.items).empty())
+  {
+    GoalSpec defaults; // the kind must be given
+    defaults.kind = "";
+    defaults.over_time = text.over_time;
+    defaults.radius = in.radius;
+    const auto items = split_ws(text.items, ';');
+    for (std::size_t i = 0; i < items.size(); ++i)
+      goals.push_back(parse_goal_item(items[i], i, defaults, "scene.goals", where, scene));
+    check_goal_names(goals, "scene.goals", where);
+  }
+  else if (in.kind == "scene")
     goals = scene.default_goals(in.radius);
   else
   {

@@ -1,7 +1,7 @@
 #pragma once
 // The goals of a run from the goal section of a config: the scene's default goals, or
 // points and rectangles given as text, with their weights.
-#include "goal/goal_spec.h"
+#include "scene/goal_spec.h"
 #include "scene/scene.h"
 
 #include <string>

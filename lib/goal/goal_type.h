@@ -4,7 +4,7 @@
 // meets, its cell vectors with their sub-cell quadrature, its exact value and the check
 // that a mesh resolves it. The registry (goal_registry.cc) lists every kind; the key
 // goal.kind, its documentation and the tests iterate it.
-#include "goal/goal_spec.h"
+#include "scene/goal_spec.h"
 
 #include <deal.II/base/point.h>
 #include <deal.II/grid/tria.h>

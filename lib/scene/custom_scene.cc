@@ -2,8 +2,6 @@
 
 #include "base/errors.h"
 #include "base/text.h"
-#include "goal/goal_input.h"
-#include "goal/goal_type.h"
 #include "scene/mesh_check.h"
 #include "scene/mesh_manifolds.h"
 #include "scene/separable.h"
@@ -346,7 +344,7 @@ CustomScene::CustomScene(const SceneOptions &o) : geometry(std::make_unique<Geom
   }
   read_boundary_data(o, constants);
   check_data_finite(o);
-  read_goals(o);
+  goals = {o.custom.goals, o.custom.goals_over_time};
   if (!trim_ws(c.exact_solution).empty())
   {
     const double length = geometry->box[0].distance(geometry->box[1]);
@@ -417,20 +415,6 @@ void CustomScene::read_boundary_data(const SceneOptions &o, const Constants &con
                        ids_text(geometry->ids) + ")");
 }
 
-void CustomScene::read_goals(const SceneOptions &o)
-{
-  const std::string key = "scene.goals", &text = o.custom.goals;
-  if (trim_ws(text).empty())
-    return;
-  GoalSpec defaults; // the kind must be given; the radius is goal.radius (default_goals)
-  defaults.kind = "";
-  defaults.over_time = o.custom.goals_over_time;
-  const auto items = split_ws(text, ';');
-  for (std::size_t i = 0; i < items.size(); ++i)
-    goals.push_back(parse_goal_item(items[i], i, defaults, key, o.source(key), *this));
-  check_goal_names(goals, key, o.source(key));
-}
-
 void CustomScene::make_coarse_grid(Triangulation<2, 2> &tria) const
 {
   geometry->make(tria);
@@ -487,20 +471,12 @@ double CustomScene::boundary_flux(const Point<2> &x, const Tensor<1, 2> &n, doub
 
 std::vector<GoalSpec> CustomScene::default_goals(double radius) const
 {
-  if (goals.empty())
-  {
-    GoalSpec g;
-    g.name = "u_center_T";
-    g.center = {0.5 * (geometry->box[0][0] + geometry->box[1][0]),
-                0.5 * (geometry->box[0][1] + geometry->box[1][1])};
-    g.radius = radius;
-    return {g};
-  }
-  std::vector<GoalSpec> out = goals;
-  for (auto &g : out)
-    if (goal_type(g.kind).has_radius())
-      g.radius = radius;
-  return out;
+  GoalSpec g;
+  g.name = "u_center_T";
+  g.center = {0.5 * (geometry->box[0][0] + geometry->box[1][0]),
+              0.5 * (geometry->box[0][1] + geometry->box[1][1])};
+  g.radius = radius;
+  return {g};
 }
 
 std::array<Point<2>, 2> CustomScene::bounding_box() const

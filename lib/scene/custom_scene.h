@@ -83,8 +83,10 @@ public:
   double boundary_flux(const dealii::Point<2> &x, const dealii::Tensor<1, 2> &n, double t,
                        dealii::types::boundary_id id) const override;
 
-  /// scene.goals, or the point goal at the centre of the bounding box.
+  /// The point goal at the centre of the bounding box (where scene.goals is empty).
   std::vector<GoalSpec> default_goals(double radius) const override;
+  /// scene.goals and scene.goals_over_time.
+  GoalText goal_text() const override { return goals; }
   std::array<dealii::Point<2>, 2> bounding_box() const override;
   std::string domain_text() const override { return domain; }
   /// In the union of the cells of the coarse mesh refined three times.
@@ -107,12 +109,11 @@ private:
   std::string domain;
   Expression b[2], alpha, f, u0;
   std::map<dealii::types::boundary_id, Expression> g_dirichlet, g_neumann;
-  std::vector<GoalSpec> goals;
+  GoalText goals;
   bool time_dependent = false;
   std::vector<LoadTerm<2>> load_terms;
   bool separable = false;
 
   void read_boundary_data(const SceneOptions &o, const Constants &constants);
-  void read_goals(const SceneOptions &o);
 };
 } // namespace anisodwr

@@ -5,7 +5,7 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
-#include "goal/goal_spec.h"
+#include "scene/goal_spec.h"
 #include "scene/scene_options.h"
 
 #include <array>
@@ -136,6 +136,16 @@ public:
   /// The scene's goal functionals (doc/method.md §10); `radius` is the mollifier radius
   /// of point goals. Default: the value at the domain's centre (0.5, 0.5) at T.
   virtual std::vector<GoalSpec> default_goals(double radius) const;
+
+  /// Goals the scene's input states as text, "[name =] kind numbers; ...", which the
+  /// goal layer parses (goal/goal_input.h, make_goals) in place of default_goals: a
+  /// custom scene's scene.goals. Empty items: none (default_goals applies).
+  struct GoalText
+  {
+    std::string items;
+    bool over_time = false;
+  };
+  virtual GoalText goal_text() const { return {}; }
 
   /// The smallest axis-parallel box holding the domain: {lower-left, upper-right}.
   /// Default: the unit square/cube.

@@ -2,7 +2,7 @@
 
 #include "base/errors.h"
 #include "base/mpi.h"
-#include "io/matrix_market.h"
+#include "solver/matrix_market.h"
 
 #include <deal.II/base/timer.h>
 

@@ -2,7 +2,7 @@
 // Goal values of a primal march and the measured temporal part of the goal error
 // (adaptivity.measure_time_error): the primal on the time mesh, bisected once and twice,
 // and Richardson extrapolation.
-#include "goal/goal_spec.h"
+#include "scene/goal_spec.h"
 #include "io/loop_report.h"
 #include "slab/primal_march.h"
 #include "space/space.h"

@@ -1,4 +1,4 @@
-#include "io/matrix_market.h"
+#include "solver/matrix_market.h"
 
 #include "base/errors.h"
 #include "base/mpi.h"

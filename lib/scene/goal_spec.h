@@ -1,5 +1,7 @@
 #pragma once
-// The description of one goal functional (doc/method.md §4), as read from the config.
+// The description of one goal functional (doc/method.md §4), as read from the config or
+// given by a scene as its default goals: plain data below the goal layer (goal/ builds
+// the functionals from it).
 #include <algorithm>
 #include <cmath>
 #include <string>
