@@ -74,6 +74,75 @@ void start_mpi()
 }
 } // namespace
 
+namespace
+{
+using namespace anisodwr;
+
+/// The run command: `run CONFIG.json [--output DIR] [--set section.key=value ...]` read
+/// into the parameters (InputError naming the option on bad input).
+Parameters read_run_command(const std::vector<std::string> &args)
+{
+  if (args.size() < 2)
+    throw InputError("run: missing CONFIG.json");
+  std::vector<std::string> overrides;
+  std::string output;
+  for (std::size_t i = 2; i < args.size(); ++i)
+  {
+    if ((args[i] == "--set" || args[i] == "--output") && i + 1 >= args.size())
+      throw InputError(args[i] + ": missing value");
+    if (args[i] == "--set")
+      overrides.push_back(args[++i]);
+    else if (args[i] == "--output")
+    {
+      output = args[++i];
+      if (output.empty())
+        throw InputError("--output: invalid value ''; expected the path of a directory "
+                         "(not empty)");
+    }
+    else
+      throw InputError("unknown option '" + args[i] + "'; expected --output DIR or --set "
+                       "section.key=value");
+  }
+  if (!output.empty())
+    overrides.push_back("output.directory=" + output);
+  Parameters prm = Parameters::read(args[1], overrides);
+  // several ranks: MUMPS unless solver.direct was chosen (UMFPACK would factorize the
+  // same matrix on every rank)
+  if (mpi_ranks() > 1 && prm.source("solver.direct") == "default")
+    prm.solver.direct_solver = DirectEngine::mumps;
+  return prm;
+}
+
+/// The command line's work; its exceptions become exit codes in main.
+int run_command(const std::vector<std::string> &args)
+{
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help")
+  {
+    std::cout << usage;
+    return args.empty() ? exit_input_error : exit_ok;
+  }
+  if (args[0] == "defaults")
+  {
+    Parameters::print_defaults(std::cout);
+    return exit_ok;
+  }
+  if (args[0] != "run")
+    throw InputError("unknown command '" + args[0] + "'; expected run, defaults or --help");
+  const Parameters prm = read_run_command(args);
+  lock_output_directory(prm.output.directory);
+  if (prm.study.mode == StudyMode::dwr)
+    run_dwr(prm);
+  else
+    run_study(prm);
+  std::cout << "results: " << prm.output.directory << "/ (summary.json";
+  std::cout << (prm.study.mode == StudyMode::convergence ? ", convergence.csv"
+                : prm.study.mode == StudyMode::dwr ? ", loops.csv, loops.tex, loops.pvd"
+                                                   : ", solution.pvd")
+            << ")\n";
+  return exit_ok;
+}
+} // namespace
+
 int main(int argc, char **argv)
 {
 #ifdef __GLIBC__
@@ -85,60 +154,9 @@ int main(int argc, char **argv)
 #endif
   using namespace anisodwr;
   start_mpi();
-  const std::vector<std::string> args(argv + 1, argv + argc);
   try
   {
-    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help")
-    {
-      std::cout << usage;
-      return args.empty() ? exit_input_error : exit_ok;
-    }
-    if (args[0] == "defaults")
-    {
-      Parameters::print_defaults(std::cout);
-      return exit_ok;
-    }
-    if (args[0] != "run")
-      throw InputError("unknown command '" + args[0] + "'; expected run, defaults or --help");
-    if (args.size() < 2)
-      throw InputError("run: missing CONFIG.json");
-    std::vector<std::string> overrides;
-    std::string output;
-    for (std::size_t i = 2; i < args.size(); ++i)
-    {
-      if ((args[i] == "--set" || args[i] == "--output") && i + 1 >= args.size())
-        throw InputError(args[i] + ": missing value");
-      if (args[i] == "--set")
-        overrides.push_back(args[++i]);
-      else if (args[i] == "--output")
-      {
-        output = args[++i];
-        if (output.empty())
-          throw InputError("--output: invalid value ''; expected the path of a directory "
-                           "(not empty)");
-      }
-      else
-        throw InputError("unknown option '" + args[i] + "'; expected --output DIR or --set "
-                         "section.key=value");
-    }
-    if (!output.empty())
-      overrides.push_back("output.directory=" + output);
-    Parameters prm = Parameters::read(args[1], overrides);
-    // several ranks: MUMPS unless solver.direct was chosen (UMFPACK would factorize the
-    // same matrix on every rank)
-    if (mpi_ranks() > 1 && prm.source("solver.direct") == "default")
-      prm.solver.direct_solver = DirectEngine::mumps;
-    lock_output_directory(prm.output.directory);
-    if (prm.study.mode == StudyMode::dwr)
-      run_dwr(prm);
-    else
-      run_study(prm);
-    std::cout << "results: " << prm.output.directory << "/ (summary.json";
-    std::cout << (prm.study.mode == StudyMode::convergence ? ", convergence.csv"
-                  : prm.study.mode == StudyMode::dwr ? ", loops.csv, loops.tex, loops.pvd"
-                                                     : ", solution.pvd")
-              << ")\n";
-    return exit_ok;
+    return run_command(std::vector<std::string>(argv + 1, argv + argc));
   }
   catch (const ResourceLimitError &e)
   {

@@ -125,6 +125,57 @@ struct TimeCoefficients
     return last.a;
   }
 };
+/// Whether the separation f(x, t) = sum_l a_l(t) f(x, t_l) (a from `coefficients`, t_l
+/// the sampled times of the pivot columns `cols` of the samples F at `points`) holds to
+/// 1e-11 of f's largest sample: at `points` at the m + 1 times jT/m (between the sampled
+/// ones, and 0 and T), and at `check_points` at three times that were not sampled.
+bool reproduces_f(const std::function<double(const Point<2> &, double)> &f,
+                  const TimeCoefficients &coefficients, const std::vector<Column> &F,
+                  const std::vector<std::size_t> &cols, const std::vector<double> &times,
+                  const std::vector<Point<2>> &points,
+                  const std::vector<Point<2>> &check_points, double end_time)
+{
+  const std::size_t k = cols.size(), m = times.size();
+  double scale = 0;
+  for (const auto &c : F)
+    for (const double v : c)
+      scale = std::max(scale, std::abs(v));
+  for (std::size_t j = 0; j <= m; ++j)
+  {
+    const double t = end_time * j / m;
+    const Vector<double> &a = coefficients.at(t);
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      double g = 0;
+      for (std::size_t l = 0; l < k; ++l)
+        g += a[l] * F[cols[l]][i];
+      if (!(std::abs(g - f(points[i], t)) <= 1e-11 * scale))
+        return false;
+    }
+  }
+  std::vector<double> check_times;
+  std::vector<Vector<double>> check_a;
+  for (const double s : {0.1234, 0.5678, 0.9012})
+  {
+    check_times.push_back(s * end_time);
+    check_a.push_back(coefficients.at(check_times.back()));
+  }
+  std::vector<double> g_x(k);
+  for (const auto &x : check_points)
+  {
+    for (std::size_t l = 0; l < k; ++l)
+      g_x[l] = f(x, times[cols[l]]);
+    for (std::size_t j = 0; j < check_times.size(); ++j)
+    {
+      double g = 0;
+      for (std::size_t l = 0; l < k; ++l)
+        g += check_a[j][l] * g_x[l];
+      if (!(std::abs(g - f(x, check_times[j])) <= 1e-11 * scale))
+        return false;
+    }
+  }
+  return true;
+}
 } // namespace separable_detail
 
 bool separate_in_time(const std::function<double(const Point<2> &, double)> &f,
@@ -179,46 +230,8 @@ bool separate_in_time(const std::function<double(const Point<2> &, double)> &f,
     x_k.push_back(points[r]);
   const auto coefficients =
       std::make_shared<const TimeCoefficients>(TimeCoefficients{f, M, x_k});
-  double scale = 0;
-  for (const auto &c : F)
-    for (const double v : c)
-      scale = std::max(scale, std::abs(v));
-  for (unsigned int j = 0; j <= m; ++j)
-  {
-    const double t = end_time * j / m; // between the sampled times, and 0 and T
-    const Column exact = sample(t);
-    const Vector<double> &a = coefficients->at(t);
-    for (std::size_t i = 0; i < points.size(); ++i)
-    {
-      double g = 0;
-      for (std::size_t l = 0; l < k; ++l)
-        g += a[l] * F[cols[l]][i];
-      if (!(std::abs(g - exact[i]) <= 1e-11 * scale))
-        return false;
-    }
-  }
-  // ... and at the dense check points, at three times that were not sampled
-  std::vector<double> check_times;
-  std::vector<Vector<double>> check_a;
-  for (const double s : {0.1234, 0.5678, 0.9012})
-  {
-    check_times.push_back(s * end_time);
-    check_a.push_back(coefficients->at(check_times.back()));
-  }
-  std::vector<double> g_x(k);
-  for (const auto &x : check_points)
-  {
-    for (std::size_t l = 0; l < k; ++l)
-      g_x[l] = f(x, times[cols[l]]);
-    for (std::size_t j = 0; j < check_times.size(); ++j)
-    {
-      double g = 0;
-      for (std::size_t l = 0; l < k; ++l)
-        g += check_a[j][l] * g_x[l];
-      if (!(std::abs(g - f(x, check_times[j])) <= 1e-11 * scale))
-        return false;
-    }
-  }
+  if (!reproduces_f(f, *coefficients, F, cols, times, points, check_points, end_time))
+    return false;
   for (std::size_t l = 0; l < k; ++l)
   {
     const double t_l = times[cols[l]];

@@ -56,6 +56,23 @@ private:
   /// The loop's solves, goal values and indicators on the current meshes (ind), and its
   /// outputs (probes, cut lines, VTU). False if the DoF budget stops the run first.
   bool solve_and_estimate(LoopRow &row, Indicators<2> &ind);
+  /// N_space, N_t, N_tot of the loop into row; false (with stop_reason) if N_tot exceeds
+  /// adaptivity.max_dofs.
+  bool within_dof_budget(LoopRow &row, const Space<2> &primal);
+  /// The primal march (U), the dG(r+1) primal of time_indicator = higher_order (U_hi)
+  /// and the goal values; with row.concurrent the adjoint march(es) in a second thread,
+  /// returned (else an empty AdjointMarch: the caller marches them after).
+  AdjointMarch march_both(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint,
+                          const MarchOptions &opt, std::vector<Vector<double>> &U,
+                          const TemporalBasis &basis_hi, std::vector<Vector<double>> &U_hi);
+  /// NumericalError naming the loop (label) if an indicator or a goal value is NaN/Inf.
+  void check_finite(const LoopRow &row, const Indicators<2> &ind,
+                    const std::string &label) const;
+  /// What the next loop's refinement and mesh take from this loop's solution U: the
+  /// crosswind factor by cell (crosswind_form = residual) and the bound cuts
+  /// (adaptivity.bound_refinement).
+  void prepare_refinement(const LoopRow &row, const Space<2> &primal,
+                          const std::vector<Vector<double>> &U);
   /// The slab solver options, with the dump of the first slab matrix to
   /// slab-<problem>-loop-NNNN.mtx in loop output.dump_slab_loop; UMFPACK (no auto
   /// choice inside a march thread) when the marches are concurrent.

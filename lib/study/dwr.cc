@@ -171,90 +171,22 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   const Space<2> &primal = *primal_space, &adjoint = *adjoint_space;
   if (row.loop == 1)
     check_goal_weights(primal, goals, goal_input(prm), *scene);
-  row.n_space = primal.n_dofs();
-  row.n_t = mesh.n_slabs();
-  row.n_tot = row.n_space * row.n_t * basis.n_dofs();
-  if (prm.adaptivity.max_dofs > 0 && row.n_tot > prm.adaptivity.max_dofs)
-  {
-    stop_reason = "DoF budget: loop " + std::to_string(row.loop) +
-                  " would have N_tot = " + std::to_string(std::size_t(row.n_tot)) +
-                  " > adaptivity.max_dofs";
+  if (!within_dof_budget(row, primal))
     return false;
-  }
-  const bool concurrent = check_loop_memory(row, primal, adjoint);
-  row.concurrent = concurrent;
+  row.concurrent = check_loop_memory(row, primal, adjoint);
   MarchOptions opt;
   opt.label = "loop " + std::to_string(row.loop);
   opt.progress = false;
   opt.growth_limit = prm.discretization.growth_limit;
   std::vector<Vector<double>> U, U_hi;
   const TemporalBasis basis_hi(prm.discretization.r + 1); // time_indicator = higher_order
-  AdjointMarch adj;
-  {
-    // The adjoint does not depend on the primal unless goal.weights = auto: with
-    // concurrent marches it runs in a second thread while the primal marches (the
-    // future's destructor waits for it if the primal fails). With auto weights only its
-    // operator is built and factorized then; the march waits for the weights (`gate`,
-    // released with false before that destructor if the primal fails). OpenBLAS runs on
-    // one thread: its own threads would compete with the other march.
-    const ScopedBlasThreads blas(concurrent ? 1 : 0);
-    std::future<AdjointMarch> adjoint_thread;
-    struct Gate
-    {
-      std::promise<bool> promise;
-      bool open = false;
-      void release(bool ok)
-      {
-        if (!open)
-          promise.set_value(ok);
-        open = true;
-      }
-      ~Gate() { release(false); }
-    } gate;
-    const std::shared_future<bool> weights =
-        auto_weights && !by_goal ? gate.promise.get_future().share() : std::shared_future<bool>();
-    if (concurrent)
-      adjoint_thread = std::async(
-          std::launch::async, [this, &adjoint, &opt, specs = goals, loop = row.loop, weights]()
-          { return march_adjoints(loop, adjoint, specs, opt, true, weights); });
-    Timer t;
-    {
-      // (one after the other: the primal's factors are freed before the adjoint factorizes)
-      SlabOperator<2> op(primal, basis, march_solver_options(row.loop, "primal", concurrent));
-      U = march_primal(primal, mesh, basis, op, opt);
-      report_auto_choice(row.loop, 0, op);
-      row.lu_primal_mb = op.timings().factor_mb;
-    }
-    release_free_memory();
-    if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)
-    {
-      SlabOperator<2> op(primal, basis_hi, march_solver_options(0, "", concurrent));
-      U_hi = march_primal(primal, mesh, basis_hi, op, opt);
-    }
-    release_free_memory();
-    row.t_primal = t.wall_time();
-    evaluate_goals(row, primal, U);
-    gate.release(true);
-    if (concurrent)
-      adj = adjoint_thread.get();
-  }
+  AdjointMarch adj = march_both(row, primal, adjoint, opt, U, basis_hi, U_hi);
   const HigherOrderPrimal hi{basis_hi, U_hi};
   const HigherOrderPrimal *hi_ptr = U_hi.empty() ? nullptr : &hi;
-
-  if (!concurrent)
+  if (!row.concurrent)
     adj = march_adjoints(row.loop, adjoint, goals, opt, false);
   estimate_from(row, ind, primal, adjoint, U, hi_ptr, std::move(adj));
-  for (double e : ind.eta_tau_slab)
-    if (!std::isfinite(e))
-      throw NumericalError(opt.label + ": the time indicator is NaN/Inf");
-  // (an overflow in the data, e.g. f = 1e308 x, leaves u_h finite and eta_h not)
-  for (const auto &e : ind.eta_h_cell)
-    if (!std::isfinite(e[0]) || !std::isfinite(e[1]))
-      throw NumericalError(opt.label + ": the space indicator eta_h is NaN/Inf (an "
-                                       "overflow in the data or the solution?)");
-  for (const double J : row.J_goal)
-    if (!std::isfinite(J))
-      throw NumericalError(opt.label + ": a goal value J(u_h) is NaN/Inf");
+  check_finite(row, ind, opt.label);
   if (prm.adaptivity.measure_time_error)
     measure_time_error(
         [&](double tau_scale)
@@ -272,6 +204,98 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   Vector<double> uT;
   combine_blocks(U.back(), basis.right_trace(), uT);
   write_loop_outputs(prm, *scene, probe_spec, row, primal, uT, ind, ar_cell, vtu_records);
+  prepare_refinement(row, primal, U);
+  return true;
+}
+
+bool AdaptiveLoop::within_dof_budget(LoopRow &row, const Space<2> &primal)
+{
+  row.n_space = primal.n_dofs();
+  row.n_t = mesh.n_slabs();
+  row.n_tot = row.n_space * row.n_t * basis.n_dofs();
+  if (prm.adaptivity.max_dofs > 0 && row.n_tot > prm.adaptivity.max_dofs)
+  {
+    stop_reason = "DoF budget: loop " + std::to_string(row.loop) +
+                  " would have N_tot = " + std::to_string(std::size_t(row.n_tot)) +
+                  " > adaptivity.max_dofs";
+    return false;
+  }
+  return true;
+}
+
+AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
+                                      const Space<2> &adjoint, const MarchOptions &opt,
+                                      std::vector<Vector<double>> &U,
+                                      const TemporalBasis &basis_hi,
+                                      std::vector<Vector<double>> &U_hi)
+{
+  // The adjoint does not depend on the primal unless goal.weights = auto: with
+  // concurrent marches it runs in a second thread while the primal marches (the
+  // future's destructor waits for it if the primal fails). With auto weights only its
+  // operator is built and factorized then; the march waits for the weights (`gate`,
+  // released with false before that destructor if the primal fails). OpenBLAS runs on
+  // one thread: its own threads would compete with the other march.
+  const bool concurrent = row.concurrent;
+  const ScopedBlasThreads blas(concurrent ? 1 : 0);
+  std::future<AdjointMarch> adjoint_thread;
+  struct Gate
+  {
+    std::promise<bool> promise;
+    bool open = false;
+    void release(bool ok)
+    {
+      if (!open)
+        promise.set_value(ok);
+      open = true;
+    }
+    ~Gate() { release(false); }
+  } gate;
+  const std::shared_future<bool> weights =
+      auto_weights && !by_goal ? gate.promise.get_future().share() : std::shared_future<bool>();
+  if (concurrent)
+    adjoint_thread = std::async(
+        std::launch::async, [this, &adjoint, &opt, specs = goals, loop = row.loop, weights]()
+        { return march_adjoints(loop, adjoint, specs, opt, true, weights); });
+  Timer t;
+  {
+    // (one after the other: the primal's factors are freed before the adjoint factorizes)
+    SlabOperator<2> op(primal, basis, march_solver_options(row.loop, "primal", concurrent));
+    U = march_primal(primal, mesh, basis, op, opt);
+    report_auto_choice(row.loop, 0, op);
+    row.lu_primal_mb = op.timings().factor_mb;
+  }
+  release_free_memory();
+  if (prm.adaptivity.time_indicator == TimeIndicator::higher_order)
+  {
+    SlabOperator<2> op(primal, basis_hi, march_solver_options(0, "", concurrent));
+    U_hi = march_primal(primal, mesh, basis_hi, op, opt);
+  }
+  release_free_memory();
+  row.t_primal = t.wall_time();
+  evaluate_goals(row, primal, U);
+  gate.release(true);
+  return concurrent ? adjoint_thread.get() : AdjointMarch();
+}
+
+void AdaptiveLoop::check_finite(const LoopRow &row, const Indicators<2> &ind,
+                                const std::string &label) const
+{
+  for (double e : ind.eta_tau_slab)
+    if (!std::isfinite(e))
+      throw NumericalError(label + ": the time indicator is NaN/Inf");
+  // (an overflow in the data, e.g. f = 1e308 x, leaves u_h finite and eta_h not)
+  for (const auto &e : ind.eta_h_cell)
+    if (!std::isfinite(e[0]) || !std::isfinite(e[1]))
+      throw NumericalError(label + ": the space indicator eta_h is NaN/Inf (an "
+                                   "overflow in the data or the solution?)");
+  for (const double J : row.J_goal)
+    if (!std::isfinite(J))
+      throw NumericalError(label + ": a goal value J(u_h) is NaN/Inf");
+}
+
+void AdaptiveLoop::prepare_refinement(const LoopRow &row, const Space<2> &primal,
+                                      const std::vector<Vector<double>> &U)
+{
   // u_h at the slab ends, formed once for the crosswind factor and the bound refinement
   std::vector<Vector<double>> ends;
   const auto slab_ends = [&]() -> const std::vector<Vector<double>> &
@@ -293,25 +317,20 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   }
   bound_cuts.clear();
   const double bound_fraction = prm.adaptivity.bound_refinement;
-  if (bound_fraction > 0)
+  if (bound_fraction <= 0)
+    return;
+  double u_min = dwr_nan, u_max = dwr_nan;
+  for (const auto &p : row.probes)
   {
-    double u_min = dwr_nan, u_max = dwr_nan;
-    for (const auto &p : row.probes)
-    {
-      if (p.first == "u_min")
-        u_min = p.second;
-      if (p.first == "u_max")
-        u_max = p.second;
-    }
-    if (std::isfinite(u_min) && std::isfinite(u_max))
-    {
-      bound_cuts = cells_out_of_bounds<2>(
-          primal.dof_handler(), slab_ends(), u_min, u_max, bound_fraction * (u_max - u_min),
-          bound_cut_aspect,
-          [this](const Point<2> &x) { return scene->convection(x, 0.); });
-    }
+    if (p.first == "u_min")
+      u_min = p.second;
+    if (p.first == "u_max")
+      u_max = p.second;
   }
-  return true;
+  if (std::isfinite(u_min) && std::isfinite(u_max))
+    bound_cuts = cells_out_of_bounds<2>(
+        primal.dof_handler(), slab_ends(), u_min, u_max, bound_fraction * (u_max - u_min),
+        bound_cut_aspect, [this](const Point<2> &x) { return scene->convection(x, 0.); });
 }
 
 std::vector<double> AdaptiveLoop::crosswind_scale_of_mesh() const
