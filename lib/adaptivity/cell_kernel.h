@@ -210,6 +210,10 @@ private:
   /// f at quadrature point q and time t, with a[j] = a_j(t) (separable_load)
   double load(unsigned int q, double t, const std::vector<double> &a) const;
   void build_cell_matrices();
+  /// The loads' rho and SUPG vectors of build_cell_matrices from its weighted factor
+  /// tables dphi (JxW phi_l) and ds (JxW s_l): load_rho, load_supg.
+  void build_load_vectors(const dealii::FullMatrix<double> &dphi,
+                          const dealii::FullMatrix<double> &ds);
 };
 
 /// W-local coefficients of temporal node k of an interleaved slab vector.

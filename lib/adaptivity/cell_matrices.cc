@@ -89,6 +89,14 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
     dpg.mTmult(adj_matrices[4], pg);
     dpg.mTmult(primal_matrices[4], gu);
   }
+  build_load_vectors(dphi, ds);
+}
+
+template <int dim>
+void CellKernel<dim>::build_load_vectors(const FullMatrix<double> &dphi,
+                                         const FullMatrix<double> &ds)
+{
+  const unsigned int nw = dphi.m(), nq = dphi.n();
   load_rho.assign(load_terms.size(), Vector<double>(nw));
   load_supg.assign(load_terms.size(), Vector<double>(nw));
   Vector<double> g(nq);
@@ -171,6 +179,8 @@ void CellKernel<dim>::add_temporal_jump_by_matrices(double delta,
 }
 
 template void CellKernel<2>::build_cell_matrices();
+template void CellKernel<2>::build_load_vectors(const FullMatrix<double> &,
+                                                const FullMatrix<double> &);
 template void CellKernel<2>::add_cell_terms_by_matrices(unsigned int, double, double,
                                                         double, double, SlabFunctional &,
                                                         SlabFunctional &) const;

@@ -34,10 +34,11 @@ double cross(const Tensor<1, 2> &a, const Tensor<1, 2> &b)
 }
 } // namespace
 
-void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
-                       const std::string &domain)
+namespace
 {
-  const std::string head = prefix + "the domain " + domain;
+/// InputError if a cell is not a quadrilateral.
+void check_quadrilaterals(const Triangulation<2> &tria, const std::string &head)
+{
   unsigned int other = 0;
   for (const auto &cell : tria.active_cell_iterators())
     if (!cell->reference_cell().is_hyper_cube())
@@ -48,15 +49,14 @@ void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
                      " cells that are not quadrilaterals (triangles); expected "
                      "quadrilaterals only (Gmsh: 'Recombine Surface' in the .geo file, or "
                      "Mesh.RecombineAll = 1 and Mesh.Algorithm = 8)");
+}
 
-  const auto &vertices = tria.get_vertices();
-  const auto &used = tria.get_used_vertices();
-  std::vector<unsigned int> ids;
-  for (unsigned int v = 0; v < vertices.size(); ++v)
-    if (used[v])
-      ids.push_back(v);
-  if (ids.empty())
-    return;
+/// The distance below which two points count as one: 1e-12 of the bounding box's
+/// diagonal of the used vertices `ids`; InputError for a coordinate beyond 1e8 or not
+/// finite.
+double check_coordinates(const std::vector<Point<2>> &vertices,
+                         const std::vector<unsigned int> &ids, const std::string &head)
+{
   Point<2> lo = vertices[ids[0]], hi = lo;
   for (const unsigned int v : ids)
     for (unsigned int d = 0; d < 2; ++d)
@@ -76,11 +76,14 @@ void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
                        v.str() + " beyond 1e8 in size; expected a domain within [-1e8, 1e8]^2 "
                        "(rescale x, and eps, b and the data with it)");
     }
-  const double tol = 1e-12 * lo.distance(hi);
+  return 1e-12 * lo.distance(hi);
+}
 
-  // two vertices at one point
-  std::sort(ids.begin(), ids.end(),
-            [&](unsigned int a, unsigned int b) { return vertices[a][0] < vertices[b][0]; });
+/// InputError if two of the vertices `ids` (sorted by x) lie within tol.
+void check_distinct_nodes(const std::vector<Point<2>> &vertices,
+                          const std::vector<unsigned int> &ids, double tol,
+                          const std::string &head)
+{
   for (std::size_t i = 0; i < ids.size(); ++i)
     for (std::size_t j = i + 1;
          j < ids.size() && vertices[ids[j]][0] - vertices[ids[i]][0] <= tol; ++j)
@@ -88,9 +91,12 @@ void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
         throw InputError(head + " has two nodes at the point " + point(vertices[ids[i]]) +
                          " that its cells do not share (a crack: the interface between "
                          "the cells becomes boundary); expected each point once");
+}
 
-  // cells with a degenerate or inverted corner (deal.II's vertex order is 0, 1, 3, 2
-  // counter-clockwise)
+/// InputError for a cell with a degenerate or inverted corner (deal.II's vertex order
+/// is 0, 1, 3, 2 counter-clockwise).
+void check_cell_corners(const Triangulation<2> &tria, const std::string &head)
+{
   static constexpr std::array<std::array<unsigned int, 3>, 4> corners{
       {{{0, 1, 2}}, {{1, 3, 0}}, {{3, 2, 1}}, {{2, 0, 3}}}};
   for (const auto &cell : tria.active_cell_iterators())
@@ -106,8 +112,15 @@ void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
                          "wrong orientation at its corner " + point(cell->vertex(c[0])) +
                          "; expected convex cells with positive area");
     }
+}
 
-  // a vertex inside a boundary face: a hanging coarse node
+/// InputError for a vertex inside a boundary face (a hanging coarse node); ids: the used
+/// vertices sorted by x.
+void check_no_hanging_nodes(const Triangulation<2> &tria,
+                            const std::vector<unsigned int> &ids, double tol,
+                            const std::string &head)
+{
+  const auto &vertices = tria.get_vertices();
   std::vector<std::array<unsigned int, 2>> faces;
   for (const auto &cell : tria.active_cell_iterators())
     for (const auto &face : cell->face_iterators())
@@ -136,6 +149,28 @@ void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
                          "share their edge); expected a conforming mesh");
     }
   }
+}
+} // namespace
+
+void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
+                       const std::string &domain)
+{
+  const std::string head = prefix + "the domain " + domain;
+  check_quadrilaterals(tria, head);
+  const auto &vertices = tria.get_vertices();
+  const auto &used = tria.get_used_vertices();
+  std::vector<unsigned int> ids;
+  for (unsigned int v = 0; v < vertices.size(); ++v)
+    if (used[v])
+      ids.push_back(v);
+  if (ids.empty())
+    return;
+  const double tol = check_coordinates(vertices, ids, head);
+  std::sort(ids.begin(), ids.end(),
+            [&](unsigned int a, unsigned int b) { return vertices[a][0] < vertices[b][0]; });
+  check_distinct_nodes(vertices, ids, tol, head);
+  check_cell_corners(tria, head);
+  check_no_hanging_nodes(tria, ids, tol, head);
 }
 
 void check_msh_node_tags(std::istream &in, const std::string &prefix)

@@ -75,6 +75,32 @@ void check_polar_cells(const std::vector<ManifoldItem> &items,
 }
 } // namespace
 
+namespace
+{
+/// InputError (prefixed by `bad`) unless the vertices of the boundary faces that the
+/// polar item m lists lie on one circle about its centre (given as the texts xy).
+void check_on_circle(const ManifoldItem &m, const Triangulation<2, 2> &mesh,
+                     const std::string &bad, const std::vector<std::string> &xy)
+{
+  double r_min = std::numeric_limits<double>::max(), r_max = 0;
+  for (const auto &face : mesh.active_face_iterators())
+    if (face->at_boundary() && lists(m, face->boundary_id()))
+      for (unsigned int v = 0; v < 2; ++v)
+      {
+        r_min = std::min(r_min, face->vertex(v).distance(m.center));
+        r_max = std::max(r_max, face->vertex(v).distance(m.center));
+      }
+  if (r_max - r_min > 1e-8 * r_max)
+  {
+    std::ostringstream d;
+    d << r_min << " to " << r_max;
+    throw InputError(bad + " in key 'scene.manifolds': the vertices of these boundary "
+                           "faces lie at distances " + d.str() + " from (" + xy[0] +
+                     ", " + xy[1] + "); expected one circle about the centre");
+  }
+}
+} // namespace
+
 std::vector<ManifoldItem> parse_manifolds(const std::string &text,
                                           const Triangulation<2, 2> &mesh,
                                           const std::string &where,
@@ -133,26 +159,8 @@ std::vector<ManifoldItem> parse_manifolds(const std::string &text,
           parse_double(xy[1], c[1]) != NumberStatus::ok)
         throw InputError(bad + " (polar needs its centre, two numbers x, y)");
       m.center = Point<2>(c[0], c[1]);
-      if (!m.on_cells) // the faces must lie on one circle about the centre
-      {
-        double r_min = std::numeric_limits<double>::max(), r_max = 0;
-        for (const auto &face : mesh.active_face_iterators())
-          if (face->at_boundary() && lists(m, face->boundary_id()))
-            for (unsigned int v = 0; v < 2; ++v)
-            {
-              r_min = std::min(r_min, face->vertex(v).distance(m.center));
-              r_max = std::max(r_max, face->vertex(v).distance(m.center));
-            }
-        if (r_max - r_min > 1e-8 * r_max)
-        {
-          std::ostringstream d;
-          d << r_min << " to " << r_max;
-          throw InputError(where + ": invalid item '" + item +
-                           "' in key 'scene.manifolds': the vertices of these boundary "
-                           "faces lie at distances " + d.str() + " from (" + xy[0] +
-                           ", " + xy[1] + "); expected one circle about the centre");
-        }
-      }
+      if (!m.on_cells)
+        check_on_circle(m, mesh, where + ": invalid item '" + item + "'", xy);
     }
     else
       throw InputError(bad);

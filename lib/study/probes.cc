@@ -149,15 +149,20 @@ double LineEvaluator<dim>::first_crossing(double level, unsigned int scan) const
   return NaN;
 }
 
-template <int dim>
-DataBounds data_bounds(const DoFHandler<dim> &dofs, const Scene<dim> &scene)
+namespace
 {
-  DataBounds b;
-  constexpr unsigned int n_times = 17;
-  const double T = scene.end_time;
-  const auto time = [&](unsigned int k) { return T * k / (n_times - 1); };
-  const auto &tria = dofs.get_triangulation();
-  double lo = 1e300, hi = -1e300, f_lo = 0., f_hi = 0., alpha_min = 1e300, alpha_max = -1e300;
+/// Extrema of the data sampled by data_bounds.
+struct DataExtrema
+{
+  double lo = 1e300, hi = -1e300; ///< of u_0 and g_D
+  double f_lo = 0., f_hi = 0., alpha_min = 1e300, alpha_max = -1e300, flux_max = 0.;
+};
+
+/// u_0 at the vertices, f and alpha at the vertices at the times time(k), k < n_times.
+template <int dim, typename Time>
+void sample_interior_data(const Triangulation<dim> &tria, const Scene<dim> &scene,
+                          const Time &time, unsigned int n_times, DataExtrema &e)
+{
   std::vector<bool> seen(tria.n_vertices(), false);
   for (const auto &cell : tria.active_cell_iterators())
     for (const unsigned int v : cell->vertex_indices())
@@ -167,18 +172,25 @@ DataBounds data_bounds(const DoFHandler<dim> &dofs, const Scene<dim> &scene)
       seen[cell->vertex_index(v)] = true;
       const Point<dim> &x = cell->vertex(v);
       const double u0 = scene.initial_value(x);
-      lo = std::min(lo, u0);
-      hi = std::max(hi, u0);
+      e.lo = std::min(e.lo, u0);
+      e.hi = std::max(e.hi, u0);
       for (unsigned int k = 0; k < n_times; ++k)
       {
         const double f = scene.rhs(x, time(k)), alpha = scene.reaction(x, time(k));
-        f_lo = std::min(f_lo, f);
-        f_hi = std::max(f_hi, f);
-        alpha_min = std::min(alpha_min, alpha);
-        alpha_max = std::max(alpha_max, alpha);
+        e.f_lo = std::min(e.f_lo, f);
+        e.f_hi = std::max(e.f_hi, f);
+        e.alpha_min = std::min(e.alpha_min, alpha);
+        e.alpha_max = std::max(e.alpha_max, alpha);
       }
     }
-  double flux_max = 0.;
+}
+
+/// g_D (into lo, hi) and |g_N| (into flux_max) at the boundary faces' vertices at the
+/// times time(k), k < n_times.
+template <int dim, typename Time>
+void sample_boundary_data(const Triangulation<dim> &tria, const Scene<dim> &scene,
+                          const Time &time, unsigned int n_times, DataExtrema &e)
+{
   for (const auto &cell : tria.active_cell_iterators())
     for (const unsigned int f : cell->face_indices())
       if (cell->face(f)->at_boundary())
@@ -204,58 +216,69 @@ DataBounds data_bounds(const DoFHandler<dim> &dofs, const Scene<dim> &scene)
             if (dirichlet)
             {
               const double g = scene.boundary_value(face->vertex(v), time(k), id);
-              lo = std::min(lo, g);
-              hi = std::max(hi, g);
+              e.lo = std::min(e.lo, g);
+              e.hi = std::max(e.hi, g);
             }
             else
-              flux_max = std::max(
-                  flux_max, std::abs(scene.boundary_flux(face->vertex(v), n, time(k), id)));
+              e.flux_max = std::max(
+                  e.flux_max, std::abs(scene.boundary_flux(face->vertex(v), n, time(k), id)));
       }
-  if (!std::isfinite(lo) || !std::isfinite(hi) || !std::isfinite(f_lo) ||
-      !std::isfinite(f_hi))
+}
+
+} // namespace
+
+template <int dim>
+DataBounds data_bounds(const DoFHandler<dim> &dofs, const Scene<dim> &scene)
+{
+  DataBounds b;
+  constexpr unsigned int n_times = 17;
+  const double T = scene.end_time;
+  const auto time = [&](unsigned int k) { return T * k / (n_times - 1); };
+  const auto &tria = dofs.get_triangulation();
+  DataExtrema e;
+  sample_interior_data(tria, scene, time, n_times, e);
+  sample_boundary_data(tria, scene, time, n_times, e);
+  if (!std::isfinite(e.lo) || !std::isfinite(e.hi) || !std::isfinite(e.f_lo) ||
+      !std::isfinite(e.f_hi))
   {
     b.reason = "none: the data are not finite at a vertex";
     return b;
   }
-  if (alpha_min < 0.)
+  if (e.alpha_min < 0.)
   {
     b.reason = "none: alpha < 0 somewhere (no maximum principle)";
     return b;
   }
-  if (flux_max > 0.)
+  if (e.flux_max > 0.)
   {
     b.reason = "none: Neumann data not zero (no maximum principle)";
     return b;
   }
-  if (alpha_max > 0.)
+  if (e.alpha_max > 0.)
   {
-    lo = std::min(lo, 0.);
-    hi = std::max(hi, 0.);
+    e.lo = std::min(e.lo, 0.);
+    e.hi = std::max(e.hi, 0.);
   }
   b.applies = true;
   b.reason = "data";
-  b.u_min = lo + T * f_lo;
-  b.u_max = hi + T * f_hi;
+  b.u_min = e.lo + T * e.f_lo;
+  b.u_max = e.hi + T * e.f_hi;
   return b;
 }
 
+/// The bounds of u_h(T) into r (u_min, u_max, bounds): the scene's, else the exact
+/// solution's extrema at T at the points of fv on every cell, else the data's
+/// (data_bounds). False where none applies.
 template <int dim>
-ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &mapping,
-                            const Vector<double> &u, const ProbeSpec<dim> &spec,
-                            const Scene<dim> &scene, double time)
+bool set_bounds(const DoFHandler<dim> &dofs, FEValues<dim> &fv, const ProbeSpec<dim> &spec,
+                const Scene<dim> &scene, double time, ProbeResult &r)
 {
-  ProbeResult r;
-  const auto &fe = dofs.get_fe();
-  const QIterated<dim> points(QTrapezoid<1>(), std::max(1u, fe.degree));
-  FEValues<dim> fv(mapping, fe, points, update_values | update_quadrature_points);
-  std::vector<double> uh(points.size());
   const bool spec_bounds = !std::isnan(spec.u_min) && !std::isnan(spec.u_max);
   const bool exact_bounds = !spec_bounds && scene.exact();
   // neither the scene's bounds nor an exact solution (a custom scene): the data's
   DataBounds from_data;
   if (!spec_bounds && !exact_bounds)
     from_data = data_bounds(dofs, scene);
-  const bool no_bounds = !spec_bounds && !exact_bounds && !from_data.applies;
   r.bounds = spec_bounds ? "scene" : exact_bounds ? "exact" : from_data.reason;
   r.u_min = spec_bounds ? spec.u_min : exact_bounds ? 1e300 : from_data.u_min;
   r.u_max = spec_bounds ? spec.u_max : exact_bounds ? -1e300 : from_data.u_max;
@@ -270,6 +293,20 @@ ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &map
         r.u_max = std::max(r.u_max, ue);
       }
     }
+  return spec_bounds || exact_bounds || from_data.applies;
+}
+
+template <int dim>
+ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &mapping,
+                            const Vector<double> &u, const ProbeSpec<dim> &spec,
+                            const Scene<dim> &scene, double time)
+{
+  ProbeResult r;
+  const auto &fe = dofs.get_fe();
+  const QIterated<dim> points(QTrapezoid<1>(), std::max(1u, fe.degree));
+  FEValues<dim> fv(mapping, fe, points, update_values | update_quadrature_points);
+  std::vector<double> uh(points.size());
+  const bool no_bounds = !set_bounds(dofs, fv, spec, scene, time, r);
   for (const auto &cell : dofs.active_cell_iterators())
   {
     if (no_bounds)
