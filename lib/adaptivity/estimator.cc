@@ -75,32 +75,38 @@ private:
   const Triangulation<dim> &tria;
   const SpatialOperators<dim> ops;
   const FE_Q<dim> &fe_w;
-  const FullMatrix<double> P, Q;
+  /// interpolation of the primal's and the adjoint's cell vectors into the weight
+  /// space W (cell matrices)
+  const FullMatrix<double> from_primal, from_adjoint;
   CellKernel<dim> kernel;
   const TemporalReconstruction recon;
   const LocalGoal<dim> goal_t, goal_T;
-  const unsigned int N, m1, nw;
+  /// slabs, temporal nodes of dG(r) per slab, W's DoFs per cell
+  const unsigned int N, n_nodes, n_w;
   /// z(T^+) = M^{-1} j_T (empty without an end-time goal) and the interpolant of u_0
   /// (E_tau u at t_0), shared by the assemblies of all threads
   const Vector<double> &zT, &u0;
   /// E_tau at the temporal Gauss points (values [0] and derivatives [1]): the same
   /// combinations for every cell and slab
-  std::vector<std::array<TimeCombination, 2>> E_z, E_u;
+  std::vector<std::array<TimeCombination, 2>> recon_z, recon_u;
   /// the dG(r+1) basis at the temporal Gauss points (values, derivatives per unit s)
-  const unsigned int m2;
+  const unsigned int n_nodes_hi;
   std::vector<std::vector<double>> hi_val, hi_der;
 
-  std::vector<Vector<double>> hk;
+  /// the dG(r+1) primal's W-local vectors at its temporal nodes (higher_order)
+  std::vector<Vector<double>> u_hi_nodes;
   Vector<double> e_prev;
   std::vector<types::global_dof_index> idx_q;
   SlabFunctional rho, supg, A_rh, S_rh, A_z, Jf;
   std::array<SlabFunctional, dim> data; // the Dirichlet data's share, per direction
-  std::vector<Vector<double>> zk, uk, vk;
+  /// W-local z, u and I_2h,i u - u at the temporal nodes of the slab
+  std::vector<Vector<double>> z_nodes, u_nodes, lift_nodes;
   /// z's nodal vectors of slab n+1 (gathered for z(t_n^+), reused by slab n+1) and
   /// each direction's I_2h,i u - u at the last node of slab n (v(t_n^-) of slab n+1)
-  std::vector<Vector<double>> zk_next, v_last;
-  std::vector<Vector<double>> rzk; // R_h or R_i applied to zk
-  Vector<double> z_next, u_prev, tmp, vT, vz, vu;
+  std::vector<Vector<double>> z_nodes_next, v_last;
+  std::vector<Vector<double>> Rz_nodes; // R_h or R_i applied to z_nodes
+  /// z(t_n^+), u(t_{n-1}^-); scratch vectors (work_T: a value at the slab's end)
+  Vector<double> z_next, u_prev, tmp, work_T, work_z, work_u;
   SlabFunction z, u, Rhz, Riz, dz, v, ez, eu;
   std::vector<LocalMap> lift;
   Vector<double> jt, jT;
@@ -117,28 +123,28 @@ IndicatorAssembly<dim>::IndicatorAssembly(
       time_indicator(time_indicator), hi(hi), space_indicator(space_indicator),
       tria(primal.dof_handler().get_triangulation()),
       ops(primal.dof_handler(), weight_degree(primal, adjoint)),
-      fe_w(ops.weight_element()), P(ops.interpolation_from(primal.finite_element())),
-      Q(ops.interpolation_from(adjoint.finite_element())), kernel(primal, fe_w, basis),
+      fe_w(ops.weight_element()), from_primal(ops.interpolation_from(primal.finite_element())),
+      from_adjoint(ops.interpolation_from(adjoint.finite_element())), kernel(primal, fe_w, basis),
       recon(basis), goal_t(primal.scene, primal.mapping(), fe_w, tria, goals, true),
       goal_T(primal.scene, primal.mapping(), fe_w, tria, goals, false), N(mesh.n_slabs()),
-      m1(basis.n_dofs()), nw(fe_w.n_dofs_per_cell()), zT(zT), u0(u0),
-      E_z(kernel.n_points()), E_u(kernel.n_points()), m2(hi ? hi->basis.n_dofs() : 0),
-      hk(m2), e_prev(nw), idx_q(adjoint.finite_element().n_dofs_per_cell()), zk(m1),
-      uk(m1), vk(m1), zk_next(m1), v_last(dim), rzk(m1), z_next(nw), u_prev(nw), tmp(nw),
-      vT(nw), vz(nw), vu(nw), lift(dim)
+      n_nodes(basis.n_dofs()), n_w(fe_w.n_dofs_per_cell()), zT(zT), u0(u0),
+      recon_z(kernel.n_points()), recon_u(kernel.n_points()), n_nodes_hi(hi ? hi->basis.n_dofs() : 0),
+      u_hi_nodes(n_nodes_hi), e_prev(n_w), idx_q(adjoint.finite_element().n_dofs_per_cell()), z_nodes(n_nodes),
+      u_nodes(n_nodes), lift_nodes(n_nodes), z_nodes_next(n_nodes), v_last(dim), Rz_nodes(n_nodes), z_next(n_w), u_prev(n_w), tmp(n_w),
+      work_T(n_w), work_z(n_w), work_u(n_w), lift(dim)
 {
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
     for (unsigned int d = 0; d < 2; ++d)
     {
-      E_z[m][d] = recon.adjoint(kernel.point(m), d == 1);
-      E_u[m][d] = recon.primal(kernel.point(m), d == 1);
+      recon_z[m][d] = recon.adjoint(kernel.point(m), d == 1);
+      recon_u[m][d] = recon.primal(kernel.point(m), d == 1);
     }
   if (hi)
     for (unsigned int m = 0; m < kernel.n_points(); ++m)
     {
       hi_val.push_back(hi->basis.values(kernel.point(m)));
-      std::vector<double> d(m2);
-      for (unsigned int k = 0; k < m2; ++k)
+      std::vector<double> d(n_nodes_hi);
+      for (unsigned int k = 0; k < n_nodes_hi; ++k)
         d[k] = hi->basis.derivative(k, kernel.point(m));
       hi_der.push_back(d);
     }
@@ -192,17 +198,17 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   kernel.primal_functionals(t0, tau, U[n], n ? &U[n - 1] : nullptr, rho, supg);
   gather_slab(n);
 
-  slab_function(kernel, basis, tau, zk, z);
+  slab_function(kernel, basis, tau, z_nodes, z);
   // R_h z, from R_h applied to z's nodal vectors (R_h acts in space only)
-  for (unsigned int k = 0; k < m1; ++k)
-    sv::vmult(rzk[k], ops.restriction(dim), zk[k]);
-  slab_function(kernel, basis, tau, rzk, Rhz);
-  kernel.adjoint_functional(t0, tau, rzk, Rhz, false, A_rh);
-  kernel.adjoint_functional(t0, tau, rzk, Rhz, true, S_rh);
-  kernel.adjoint_functional(t0, tau, zk, z, false, A_z);
+  for (unsigned int k = 0; k < n_nodes; ++k)
+    sv::vmult(Rz_nodes[k], ops.restriction(dim), z_nodes[k]);
+  slab_function(kernel, basis, tau, Rz_nodes, Rhz);
+  kernel.adjoint_functional(t0, tau, Rz_nodes, Rhz, false, A_rh);
+  kernel.adjoint_functional(t0, tau, Rz_nodes, Rhz, true, S_rh);
+  kernel.adjoint_functional(t0, tau, z_nodes, z, false, A_z);
   kernel.goal_functional(tau, jt, Jf);
   const bool last = n + 1 == N;
-  slab_function(kernel, basis, tau, uk, u);
+  slab_function(kernel, basis, tau, u_nodes, u);
   // S(u)(R_h z): with z_h = R_h z in the primal space, J(e) = rho(u)(z - z_h) +
   // S(u)(z_h) and J(e) = rho*(z_h)(u - u_h) + S(u)(z_h) hold exactly, so the
   // average of the two carries the full SUPG consistency term.
@@ -253,26 +259,26 @@ template <int dim> void IndicatorAssembly<dim>::gather_slab(unsigned int n)
   const auto &idx = kernel.dof_indices();
   if (n > 0)
   {
-    sv::copy(u_prev, uk[m1 - 1]);
-    zk.swap(zk_next);
+    sv::copy(u_prev, u_nodes[n_nodes - 1]);
+    z_nodes.swap(z_nodes_next);
   }
   else
   {
-    gather(u0, idx, 1, 0, P, u_prev);
-    for (unsigned int k = 0; k < m1; ++k)
-      gather(Z[n], idx_q, m1, k, Q, zk[k]);
+    gather(u0, idx, 1, 0, from_primal, u_prev);
+    for (unsigned int k = 0; k < n_nodes; ++k)
+      gather(Z[n], idx_q, n_nodes, k, from_adjoint, z_nodes[k]);
   }
-  for (unsigned int k = 0; k < m1; ++k)
-    gather(U[n], idx, m1, k, P, uk[k]);
+  for (unsigned int k = 0; k < n_nodes; ++k)
+    gather(U[n], idx, n_nodes, k, from_primal, u_nodes[k]);
   sv::zero(z_next);
   if (n + 1 < N)
-    for (unsigned int k = 0; k < m1; ++k)
+    for (unsigned int k = 0; k < n_nodes; ++k)
     {
-      gather(Z[n + 1], idx_q, m1, k, Q, zk_next[k]);
-      sv::add(z_next, basis.left_trace()[k], zk_next[k]);
+      gather(Z[n + 1], idx_q, n_nodes, k, from_adjoint, z_nodes_next[k]);
+      sv::add(z_next, basis.left_trace()[k], z_nodes_next[k]);
     }
   else if (zT.size())
-    gather(zT, idx_q, 1, 0, Q, z_next);
+    gather(zT, idx_q, 1, 0, from_adjoint, z_next);
 }
 
 template <int dim>
@@ -281,9 +287,9 @@ double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned in
                                                      double &lift_size, double &half_rho,
                                                      Indicators<dim> &ind)
 {
-  for (unsigned int k = 0; k < m1; ++k)
-    sv::vmult(rzk[k], ops.restriction(i), zk[k]);
-  slab_function(kernel, basis, tau, rzk, Riz);
+  for (unsigned int k = 0; k < n_nodes; ++k)
+    sv::vmult(Rz_nodes[k], ops.restriction(i), z_nodes[k]);
+  slab_function(kernel, basis, tau, Rz_nodes, Riz);
   difference(z, Riz, dz);
   half_rho = 0.5 * apply(rho, dz, false);
   ind.eta_h_rho += half_rho;
@@ -291,26 +297,26 @@ double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned in
     return 2 * half_rho;
   if (!lift[i].exists)
     return half_rho;
-  for (unsigned int k = 0; k < m1; ++k)
+  for (unsigned int k = 0; k < n_nodes; ++k)
   {
-    lift[i].apply(U[n], vk[k], m1, k);
-    sv::subtract(vk[k], uk[k]);
+    lift[i].apply(U[n], lift_nodes[k], n_nodes, k);
+    sv::subtract(lift_nodes[k], u_nodes[k]);
   }
-  slab_function(kernel, basis, tau, vk, v);
+  slab_function(kernel, basis, tau, lift_nodes, v);
   for (const auto &vv : v.val)
     lift_size += tau * sv::norm_sqr(vv);
   if (n > 0)
     sv::copy(v.minus, v_last[i]); // I_2h,i u - u at U[n-1]'s last node
   else
     v.minus.reinit(0);
-  sv::copy(v_last[i], vk[m1 - 1]);
+  sv::copy(v_last[i], lift_nodes[n_nodes - 1]);
   double jv = apply(Jf, v, false); // J' over I
   if (last && jT.size())
   {
-    sv::zero(vT);
-    for (unsigned int k = 0; k < m1; ++k)
-      sv::add(vT, basis.right_trace()[k], vk[k]);
-    jv += sv::dot(jT, vT);
+    sv::zero(work_T);
+    for (unsigned int k = 0; k < n_nodes; ++k)
+      sv::add(work_T, basis.right_trace()[k], lift_nodes[k]);
+    jv += sv::dot(jT, work_T);
   }
   const double half_rhostar =
       0.5 * (jv - apply(A_rh, v, true)) + 0.5 * apply(S_rh, v, true);
@@ -328,36 +334,36 @@ template <int dim> void IndicatorAssembly<dim>::reconstruction_errors(double tau
   {
     for (bool deriv : {false, true})
     {
-      const TimeCombination &a = E_z[m][deriv], &b = E_u[m][deriv];
-      sv::zero(vz);
-      sv::zero(vu);
-      sv::add(vz, a.outside, z_next);
-      sv::add(vu, b.outside, u_prev);
-      for (unsigned int k = 0; k < m1; ++k)
+      const TimeCombination &a = recon_z[m][deriv], &b = recon_u[m][deriv];
+      sv::zero(work_z);
+      sv::zero(work_u);
+      sv::add(work_z, a.outside, z_next);
+      sv::add(work_u, b.outside, u_prev);
+      for (unsigned int k = 0; k < n_nodes; ++k)
       {
-        sv::add(vz, a.slab[k], zk[k]);
-        sv::add(vu, b.slab[k], uk[k]);
+        sv::add(work_z, a.slab[k], z_nodes[k]);
+        sv::add(work_u, b.slab[k], u_nodes[k]);
       }
       if (deriv)
       {
         // (deal.II's operator/= multiplies by the reciprocal)
-        sv::scale(vz, 1. / tau);
-        sv::scale(vu, 1. / tau);
-        sv::subtract(vz, z.dt[m]);
-        sv::subtract(vu, u.dt[m]);
-        sv::copy(ez.dt[m], vz);
-        sv::copy(eu.dt[m], vu);
+        sv::scale(work_z, 1. / tau);
+        sv::scale(work_u, 1. / tau);
+        sv::subtract(work_z, z.dt[m]);
+        sv::subtract(work_u, u.dt[m]);
+        sv::copy(ez.dt[m], work_z);
+        sv::copy(eu.dt[m], work_u);
       }
       else
       {
-        sv::subtract(vz, z.val[m]);
-        sv::subtract(vu, u.val[m]);
-        sv::copy(ez.val[m], vz);
-        sv::copy(eu.val[m], vu);
+        sv::subtract(work_z, z.val[m]);
+        sv::subtract(work_u, u.val[m]);
+        sv::copy(ez.val[m], work_z);
+        sv::copy(eu.val[m], work_u);
       }
     }
   }
-  sv::zero(ez.plus, nw);     // E z(t_{n-1}) = z(t_{n-1}^+)
+  sv::zero(ez.plus, n_w);     // E z(t_{n-1}) = z(t_{n-1}^+)
   sv::copy(eu.plus, u_prev); // E u(t_{n-1}) - u(t_{n-1}^+)
   sv::subtract(eu.plus, u.plus);
 }
@@ -368,31 +374,31 @@ double IndicatorAssembly<dim>::higher_order_errors(unsigned int n, double tau, b
   // E u := u_r+1: values and derivatives at the Gauss points, the jump of
   // e = u_r+1 - u at t_{n-1} (e(t_0^-) = 0: both start from u_0), and J_T(e(T))
   const auto &idx = kernel.dof_indices();
-  if (n > 0) // u_r+1(t_{n-1}^-) from slab n-1's nodal vectors, still in hk
+  if (n > 0) // u_r+1(t_{n-1}^-) from slab n-1's nodal vectors, still in u_hi_nodes
   {
     e_prev = 0.;
-    for (unsigned int k = 0; k < m2; ++k)
-      e_prev.add(hi->basis.right_trace()[k], hk[k]);
+    for (unsigned int k = 0; k < n_nodes_hi; ++k)
+      e_prev.add(hi->basis.right_trace()[k], u_hi_nodes[k]);
   }
-  for (unsigned int k = 0; k < m2; ++k)
-    gather(hi->U[n], idx, m2, k, P, hk[k]);
+  for (unsigned int k = 0; k < n_nodes_hi; ++k)
+    gather(hi->U[n], idx, n_nodes_hi, k, from_primal, u_hi_nodes[k]);
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
   {
-    sv::zero(vu);
+    sv::zero(work_u);
     sv::zero(tmp);
-    for (unsigned int k = 0; k < m2; ++k)
+    for (unsigned int k = 0; k < n_nodes_hi; ++k)
     {
-      sv::add(vu, hi_val[m][k], hk[k]);
-      sv::add(tmp, hi_der[m][k] / tau, hk[k]);
+      sv::add(work_u, hi_val[m][k], u_hi_nodes[k]);
+      sv::add(tmp, hi_der[m][k] / tau, u_hi_nodes[k]);
     }
-    sv::subtract(vu, u.val[m]);
+    sv::subtract(work_u, u.val[m]);
     sv::subtract(tmp, u.dt[m]);
-    sv::copy(eu.val[m], vu);
+    sv::copy(eu.val[m], work_u);
     sv::copy(eu.dt[m], tmp);
   }
   eu.plus = 0.;
-  for (unsigned int k = 0; k < m2; ++k)
-    eu.plus.add(hi->basis.left_trace()[k], hk[k]);
+  for (unsigned int k = 0; k < n_nodes_hi; ++k)
+    eu.plus.add(hi->basis.left_trace()[k], u_hi_nodes[k]);
   eu.plus -= u.plus;
   if (n > 0)
   {
@@ -401,12 +407,12 @@ double IndicatorAssembly<dim>::higher_order_errors(unsigned int n, double tau, b
   }
   if (!(last && jT.size()))
     return 0.;
-  vT = 0.;
-  for (unsigned int k = 0; k < m2; ++k)
-    vT.add(hi->basis.right_trace()[k], hk[k]);
-  for (unsigned int k = 0; k < m1; ++k)
-    vT.add(-basis.right_trace()[k], uk[k]);
-  return jT * vT;
+  work_T = 0.;
+  for (unsigned int k = 0; k < n_nodes_hi; ++k)
+    work_T.add(hi->basis.right_trace()[k], u_hi_nodes[k]);
+  for (unsigned int k = 0; k < n_nodes; ++k)
+    work_T.add(-basis.right_trace()[k], u_nodes[k]);
+  return jT * work_T;
 }
 } // namespace
 
