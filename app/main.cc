@@ -4,7 +4,7 @@
 #include "base/mpi.h"
 #include "config/parameters.h"
 #include "io/table.h"
-#include "study/dwr.h"
+#include "dwr/dwr.h"
 #include "study/study.h"
 
 #include <deal.II/base/multithread_info.h>

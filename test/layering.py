@@ -14,7 +14,7 @@ import re
 import sys
 
 ORDER = ["base", "scene", "space", "time", "goal", "solver", "slab", "adaptivity", "io",
-         "config", "study"]
+         "config", "study", "dwr"]
 
 
 def main():

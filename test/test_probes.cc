@@ -1,4 +1,4 @@
-// The hemker scene's mesh and the derived-output routines (study/probes.h), on
+// The hemker scene's mesh and the derived-output routines (dwr/probes.h), on
 // functions with known answers:
 //  - coarse mesh: 10 cells, 196 Q1 DoFs after 2 refinements, boundary ids 0 (x = -3),
 //    1 (circle), 2 (rest), refined circle vertices on the circle, area -> 66 - pi;
@@ -18,7 +18,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include "scene/scenes.h"
-#include "study/probes.h"
+#include "dwr/probes.h"
 
 #include <cmath>
 #include <functional>

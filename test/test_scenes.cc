@@ -5,7 +5,7 @@
 #include "config/parameters.h"
 #include "scene/scene.h"
 #include "scene/scene_registry.h"
-#include "study/dwr.h"
+#include "dwr/dwr.h"
 #include "study/options.h"
 
 #include <gtest/gtest.h>

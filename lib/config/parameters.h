@@ -108,7 +108,7 @@ struct AdaptivitySection : MarkingOptions
   unsigned int loops = 6;
   double theta_tau = 1.;
   /// refine time where |eta_tau| >= time_balance |eta_h|, space where |eta_h| >=
-  /// time_balance |eta_tau| (study/dwr.cc, balance)
+  /// time_balance |eta_tau| (dwr/dwr.cc, balance)
   double time_balance = 0.5;
   double tolerance = 0.;
   ToleranceMeasure tolerance_measure = ToleranceMeasure::parts;

@@ -1,7 +1,7 @@
-#include "study/adaptive_loop.h"
-#include "study/loop_outputs.h"
+#include "dwr/adaptive_loop.h"
+#include "dwr/loop_outputs.h"
 #include "study/options.h"
-#include "study/time_error.h"
+#include "dwr/time_error.h"
 
 #include "adaptivity/lifted_goal.h"
 #include "base/mpi.h"

@@ -1,4 +1,4 @@
-#include "study/time_error.h"
+#include "dwr/time_error.h"
 
 #include "adaptivity/refinement.h"
 #include "goal/goal.h"

@@ -5,7 +5,7 @@
 #include "io/loop_report.h"
 #include "scene/scene.h"
 #include "space/space.h"
-#include "study/probes.h"
+#include "dwr/probes.h"
 
 #include <deal.II/lac/vector.h>
 

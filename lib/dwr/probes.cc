@@ -1,4 +1,4 @@
-#include "study/probes.h"
+#include "dwr/probes.h"
 
 #include "base/mpi.h"
 #include "io/table.h"

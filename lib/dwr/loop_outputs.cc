@@ -1,4 +1,4 @@
-#include "study/loop_outputs.h"
+#include "dwr/loop_outputs.h"
 
 #include "io/table.h"
 #include "io/vtu.h"

@@ -1,8 +1,8 @@
-#include "study/dwr.h"
-#include "study/adaptive_loop.h"
-#include "study/loop_outputs.h"
+#include "dwr/dwr.h"
+#include "dwr/adaptive_loop.h"
+#include "dwr/loop_outputs.h"
 #include "study/options.h"
-#include "study/time_error.h"
+#include "dwr/time_error.h"
 
 #include "space/crosswind_scale.h"
 

@@ -1,5 +1,5 @@
 #pragma once
-// The adaptive DWR loop of run_dwr (study/dwr.h), internal to lib/study/: the class that
+// The adaptive DWR loop of run_dwr (dwr/dwr.h), internal to lib/dwr/: the class that
 // sequences the loops. Its parts by job:
 //   dwr.cc          the loop: solves, estimate, refinement (time and space balanced),
 //                   stop, tables
@@ -14,7 +14,7 @@
 #include "slab/primal_march.h"
 #include "slab/slab_operator.h"
 #include "study/memory_estimate.h"
-#include "study/probes.h"
+#include "dwr/probes.h"
 
 #include <deal.II/base/timer.h>
 #include <deal.II/grid/cell_id.h>
