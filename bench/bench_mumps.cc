@@ -96,6 +96,83 @@ DynamicSparsityPattern kron_pattern(const SparseMatrix<double> &S, unsigned int 
           dsp.add(i * m + k, e->column() * m + l);
   return dsp;
 }
+/// The figures of one configuration's CSV line.
+struct Figures
+{
+  double build = 0, factorize = 0, solve = 0, residual = 0, peak_max = 0, peak_sum = 0;
+};
+
+/// UMFPACK on the assembled slab matrix (one process): assembly, factorization with the
+/// first solve, the mean of three more solves, the relative residual, the peak.
+Figures solve_umfpack(const std::vector<KronTerm> &terms, unsigned int m,
+                      types::global_dof_index N)
+{
+  Figures f;
+  Timer t;
+  SparsityPattern pattern;
+  make_kron_sparsity(terms[0].S->get_sparsity_pattern(), m, pattern);
+  SparseMatrix<double> Kd;
+  assemble_kron(terms, pattern, Kd);
+  Vector<double> bd(N), xd(N), rd(N);
+  for (types::global_dof_index i = 0; i < N; ++i)
+    bd(i) = load(i);
+  f.build = t.wall_time();
+  t.restart();
+  SparseDirectUMFPACK lu;
+  lu.initialize(Kd);
+  lu.vmult(xd, bd);
+  f.factorize = t.wall_time();
+  t.restart();
+  for (unsigned int s = 0; s < 3; ++s)
+    lu.vmult(xd, bd);
+  f.solve = t.wall_time() / 3;
+  Kd.vmult(rd, xd);
+  rd -= bd;
+  f.residual = rd.l2_norm() / bd.l2_norm();
+  f.peak_max = f.peak_sum = peak_memory_mb();
+  return f;
+}
+
+/// MUMPS (PETSc) on the slab matrix distributed by blocks of spatial rows over the ranks
+/// of comm: the same figures, the peak as the maximum and the sum over the ranks.
+Figures solve_mumps(const std::vector<KronTerm> &terms, unsigned int m, unsigned int n,
+                    types::global_dof_index N, MPI_Comm comm)
+{
+  const unsigned int ranks = Utilities::MPI::n_mpi_processes(comm),
+                     rank = Utilities::MPI::this_mpi_process(comm);
+  Figures f;
+  Timer t;
+  const unsigned int i0 = std::size_t(n) * rank / ranks,
+                     i1 = std::size_t(n) * (rank + 1) / ranks;
+  IndexSet owned(N);
+  owned.add_range(types::global_dof_index(i0) * m, types::global_dof_index(i1) * m);
+  PETScWrappers::MPI::SparseMatrix K;
+  K.reinit(owned, owned, kron_pattern(*terms[0].S, m, i0, i1, owned), comm);
+  copy_rows(terms, m, i0, i1, K);
+  K.compress(VectorOperation::insert);
+  PETScWrappers::MPI::Vector b(owned, comm), x(owned, comm), res(owned, comm);
+  for (const auto i : owned)
+    b(i) = load(i);
+  b.compress(VectorOperation::insert);
+  f.build = t.wall_time();
+
+  SolverControl control(1, 0);
+  PETScWrappers::SparseDirectMUMPS mumps(control, comm);
+  t.restart();
+  mumps.solve(K, x, b); // factorization and the first solve
+  f.factorize = t.wall_time();
+  t.restart();
+  for (unsigned int s = 0; s < 3; ++s)
+    mumps.solve(K, x, b);
+  f.solve = t.wall_time() / 3;
+  K.vmult(res, x);
+  res -= b;
+  f.residual = res.l2_norm() / b.l2_norm();
+  const double peak = peak_memory_mb();
+  f.peak_max = Utilities::MPI::max(peak, comm);
+  f.peak_sum = Utilities::MPI::sum(peak, comm);
+  return f;
+}
 } // namespace
 
 int main(int argc, char **argv)
@@ -142,74 +219,20 @@ int main(int argc, char **argv)
   const auto &terms = op.full_terms();
   const unsigned int m = basis.n_dofs(), n = space.n_dofs();
   const types::global_dof_index N = types::global_dof_index(n) * m;
-  const auto print_row = [&](const std::string &solver, double build, double factorize,
-                             double solve, double residual, double peak_max,
-                             double peak_sum)
+  const auto print_row = [&](const std::string &solver, const Figures &f)
   {
     std::cout << ranks << "," << p << "," << r << "," << eps << "," << refs << "," << n
-              << "," << N << "," << solver << "," << build << "," << factorize << ","
-              << solve << "," << residual << "," << peak_max << "," << peak_sum
+              << "," << N << "," << solver << "," << f.build << "," << f.factorize << ","
+              << f.solve << "," << f.residual << "," << f.peak_max << "," << f.peak_sum
               << std::endl;
   };
-
   if (umfpack)
   {
-    Timer t;
-    SparsityPattern pattern;
-    make_kron_sparsity(terms[0].S->get_sparsity_pattern(), m, pattern);
-    SparseMatrix<double> Kd;
-    assemble_kron(terms, pattern, Kd);
-    Vector<double> bd(N), xd(N), rd(N);
-    for (types::global_dof_index i = 0; i < N; ++i)
-      bd(i) = load(i);
-    const double build_d = t.wall_time();
-    t.restart();
-    SparseDirectUMFPACK lu;
-    lu.initialize(Kd);
-    lu.vmult(xd, bd);
-    const double factorize_d = t.wall_time();
-    t.restart();
-    for (unsigned int s = 0; s < 3; ++s)
-      lu.vmult(xd, bd);
-    const double solve_d = t.wall_time() / 3;
-    Kd.vmult(rd, xd);
-    rd -= bd;
-    print_row("umfpack", build_d, factorize_d, solve_d, rd.l2_norm() / bd.l2_norm(),
-              peak_memory_mb(), peak_memory_mb());
+    print_row("umfpack", solve_umfpack(terms, m, N));
     return 0;
   }
-  Timer t;
-  const unsigned int i0 = std::size_t(n) * rank / ranks,
-                     i1 = std::size_t(n) * (rank + 1) / ranks;
-  IndexSet owned(N);
-  owned.add_range(types::global_dof_index(i0) * m, types::global_dof_index(i1) * m);
-  PETScWrappers::MPI::SparseMatrix K;
-  K.reinit(owned, owned, kron_pattern(*terms[0].S, m, i0, i1, owned), comm);
-  copy_rows(terms, m, i0, i1, K);
-  K.compress(VectorOperation::insert);
-  PETScWrappers::MPI::Vector b(owned, comm), x(owned, comm), res(owned, comm);
-  for (const auto i : owned)
-    b(i) = load(i);
-  b.compress(VectorOperation::insert);
-  const double build = t.wall_time();
-
-  SolverControl control(1, 0);
-  PETScWrappers::SparseDirectMUMPS mumps(control, comm);
-  t.restart();
-  mumps.solve(K, x, b); // factorization and the first solve
-  const double factorize = t.wall_time();
-  t.restart();
-  for (unsigned int s = 0; s < 3; ++s)
-    mumps.solve(K, x, b);
-  const double solve = t.wall_time() / 3;
-  K.vmult(res, x);
-  res -= b;
-  const double residual = res.l2_norm() / b.l2_norm();
-  const double peak = peak_memory_mb();
-  const double peak_max = Utilities::MPI::max(peak, comm),
-               peak_sum = Utilities::MPI::sum(peak, comm);
+  const Figures f = solve_mumps(terms, m, n, N, comm);
   if (rank == 0)
-    print_row("mumps", build, factorize, solve, residual, peak_max, peak_sum);
-
+    print_row("mumps", f);
   return 0;
 }

@@ -66,6 +66,68 @@ double load1()
 }
 } // namespace
 
+namespace
+{
+/// The slab solver options of the SOLVER argument (direct | mumps |
+/// KRYLOV+PRECONDITIONER[@amg[-gs|-cheb]]) and the BENCH_* environment; krylov and prec
+/// get the names for the CSV line ("-" for a direct solver).
+SlabSolverOptions solver_options(const std::string &solver, std::string &krylov,
+                                 std::string &prec)
+{
+  SlabSolverOptions o;
+  krylov = "-";
+  prec = "-";
+  if (solver == "direct" || solver == "mumps")
+  {
+    o.type = SolverType::direct;
+    if (solver == "mumps")
+      o.direct_solver = DirectEngine::mumps;
+    return o;
+  }
+  const auto plus = solver.find('+');
+  krylov = solver.substr(0, plus);
+  prec = solver.substr(plus + 1);
+  const auto at = prec.find('@');
+  if (at != std::string::npos)
+  {
+    const std::string spatial = prec.substr(at + 1);
+    o.iterative.spatial_preconditioner = SpatialPreconditioner::amg;
+    o.iterative.amg_smoother = spatial == "amg-gs"     ? AmgSmoother::gauss_seidel
+                               : spatial == "amg-cheb" ? AmgSmoother::chebyshev
+                                                       : AmgSmoother::ilu;
+    prec = prec.substr(0, at);
+  }
+  o.type = SolverType::iterative;
+  o.iterative.krylov = choice_named<Krylov>(krylov);
+  o.iterative.preconditioner = choice_named<Preconditioner>(prec);
+  o.iterative.tolerance = 1e-10;
+  o.iterative.restart = 30;
+  o.iterative.max_iterations = 500;
+  if (const char *fill = std::getenv("BENCH_ILU_FILL"))
+    o.iterative.ilu_fill = std::stod(fill);
+  if (const char *inner = std::getenv("BENCH_INNER"))
+    o.iterative.inner_iterations = std::stoi(inner);
+  if (const char *tol = std::getenv("BENCH_INNER_TOL"))
+    o.iterative.inner_tolerance = std::stod(tol);
+  return o;
+}
+
+/// The scene's coarse mesh refined `refs` times, then every cell cut `aniso` more times
+/// in y (BENCH_ANISO).
+void make_mesh(const Scene<2> &scene, unsigned int refs, unsigned int aniso,
+               Triangulation<2> &tria)
+{
+  scene.make_coarse_grid(tria);
+  tria.refine_global(refs);
+  for (unsigned int k = 0; k < aniso; ++k)
+  {
+    for (const auto &cell : tria.active_cell_iterators())
+      cell->set_refine_flag(RefinementCase<2>::cut_y);
+    tria.execute_coarsening_and_refinement();
+  }
+}
+} // namespace
+
 int main(int argc, char **argv)
 {
   if (argc == 2 && std::string(argv[1]) == "--header")
@@ -85,43 +147,9 @@ int main(int argc, char **argv)
   const std::string eps = argv[4];
   const bool adjoint = system == "adjoint";
 
-  SlabSolverOptions o;
-  std::string krylov = "-", prec = "-";
-  const bool direct = solver == "direct" || solver == "mumps";
-  if (direct)
-  {
-    o.type = SolverType::direct;
-    if (solver == "mumps")
-      o.direct_solver = DirectEngine::mumps;
-  }
-  else
-  {
-    const auto plus = solver.find('+');
-    krylov = solver.substr(0, plus);
-    prec = solver.substr(plus + 1);
-    const auto at = prec.find('@');
-    if (at != std::string::npos)
-    {
-      const std::string spatial = prec.substr(at + 1);
-      o.iterative.spatial_preconditioner = SpatialPreconditioner::amg;
-      o.iterative.amg_smoother = spatial == "amg-gs"     ? AmgSmoother::gauss_seidel
-                                 : spatial == "amg-cheb" ? AmgSmoother::chebyshev
-                                                         : AmgSmoother::ilu;
-      prec = prec.substr(0, at);
-    }
-    o.type = SolverType::iterative;
-    o.iterative.krylov = choice_named<Krylov>(krylov);
-    o.iterative.preconditioner = choice_named<Preconditioner>(prec);
-    o.iterative.tolerance = 1e-10;
-    o.iterative.restart = 30;
-    o.iterative.max_iterations = 500;
-    if (const char *fill = std::getenv("BENCH_ILU_FILL"))
-      o.iterative.ilu_fill = std::stod(fill);
-    if (const char *inner = std::getenv("BENCH_INNER"))
-      o.iterative.inner_iterations = std::stoi(inner);
-    if (const char *tol = std::getenv("BENCH_INNER_TOL"))
-      o.iterative.inner_tolerance = std::stod(tol);
-  }
+  std::string krylov, prec;
+  const SlabSolverOptions o = solver_options(solver, krylov, prec);
+  const bool direct = o.type == SolverType::direct;
   // AMG needs MPI (the library initializes it on first use); initialized here, outside
   // the timed setup, since it is a once-per-process cost (about 1 s for a singleton).
   const bool amg = o.iterative.spatial_preconditioner == SpatialPreconditioner::amg;
@@ -132,17 +160,10 @@ int main(int argc, char **argv)
   }
   const auto scene = create_scene<2>(
       Parameters::from_overrides({"scene.name=moving_hump", "scene.epsilon=" + eps}));
-  Triangulation<2> tria;
-  scene->make_coarse_grid(tria);
-  tria.refine_global(refs);
   const unsigned int aniso =
       std::getenv("BENCH_ANISO") ? std::stoi(std::getenv("BENCH_ANISO")) : 0;
-  for (unsigned int k = 0; k < aniso; ++k)
-  {
-    for (const auto &cell : tria.active_cell_iterators())
-      cell->set_refine_flag(RefinementCase<2>::cut_y);
-    tria.execute_coarsening_and_refinement();
-  }
+  Triangulation<2> tria;
+  make_mesh(*scene, refs, aniso, tria);
   Space<2> space(*scene, tria, p, Stabilization{1.0, SupgLength::volume, 0.});
   const char *numbering_env = std::getenv("BENCH_NUMBERING");
   const std::string numbering = numbering_env ? numbering_env : "native";
