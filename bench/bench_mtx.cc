@@ -166,8 +166,8 @@ void add_accuracy(const Triplets &t, int s, const std::vector<double> &b,
 }
 
 #ifdef ANISODWR_HAVE_HYPRE
-/// GMRES(30) + BoomerAMG with AIR through hypre's own interface.
-SolveFigures solve_with_air(const Triplets &t, int restriction, int relax, int n_solves)
+/// The matrix of t as a hypre IJ matrix (ParCSR object in parA).
+HYPRE_IJMatrix hypre_matrix(const Triplets &t, HYPRE_ParCSRMatrix &parA)
 {
   const HYPRE_BigInt last = t.n - 1;
   HYPRE_IJMatrix A;
@@ -187,26 +187,15 @@ SolveFigures solve_with_air(const Triplets &t, int restriction, int relax, int n
     HYPRE_IJMatrixSetValues(A, 1, &nc, &row, cols.data(), t.vals.data() + t.row_start[i]);
   }
   HYPRE_IJMatrixAssemble(A);
-  HYPRE_ParCSRMatrix parA;
   HYPRE_IJMatrixGetObject(A, reinterpret_cast<void **>(&parA));
+  return A;
+}
 
-  auto make_vector = [&](HYPRE_IJVector &v, HYPRE_ParVector &par)
-  {
-    HYPRE_IJVectorCreate(MPI_COMM_SELF, 0, last, &v);
-    HYPRE_IJVectorSetObjectType(v, HYPRE_PARCSR);
-    HYPRE_IJVectorInitialize(v);
-    HYPRE_IJVectorAssemble(v);
-    HYPRE_IJVectorGetObject(v, reinterpret_cast<void **>(&par));
-  };
-  HYPRE_IJVector b, x;
-  HYPRE_ParVector parb, parx;
-  make_vector(b, parb);
-  make_vector(x, parx);
-  std::vector<HYPRE_BigInt> idx(t.n);
-  for (PetscInt i = 0; i < t.n; ++i)
-    idx[i] = i;
-
-  HYPRE_Solver amg, gmres;
+/// BoomerAMG as AIR: the restriction and relaxation types given, one-point
+/// interpolation, no pre-relaxation, post-relaxation F, F, C, one V-cycle.
+HYPRE_Solver air_preconditioner(int restriction, int relax)
+{
+  HYPRE_Solver amg;
   HYPRE_BoomerAMGCreate(&amg);
   HYPRE_BoomerAMGSetRestriction(amg, restriction);
   HYPRE_BoomerAMGSetInterpType(amg, 100); // one-point interpolation
@@ -227,7 +216,33 @@ SolveFigures solve_with_air(const Triplets &t, int restriction, int relax, int n
   points[2][0] = -1, points[2][1] = -1, points[2][2] = 1;
   HYPRE_BoomerAMGSetNumGridSweeps(amg, sweeps);
   HYPRE_BoomerAMGSetGridRelaxPoints(amg, points);
+  return amg;
+}
 
+/// GMRES(30) + BoomerAMG with AIR through hypre's own interface.
+SolveFigures solve_with_air(const Triplets &t, int restriction, int relax, int n_solves)
+{
+  const HYPRE_BigInt last = t.n - 1;
+  HYPRE_ParCSRMatrix parA;
+  HYPRE_IJMatrix A = hypre_matrix(t, parA);
+
+  auto make_vector = [&](HYPRE_IJVector &v, HYPRE_ParVector &par)
+  {
+    HYPRE_IJVectorCreate(MPI_COMM_SELF, 0, last, &v);
+    HYPRE_IJVectorSetObjectType(v, HYPRE_PARCSR);
+    HYPRE_IJVectorInitialize(v);
+    HYPRE_IJVectorAssemble(v);
+    HYPRE_IJVectorGetObject(v, reinterpret_cast<void **>(&par));
+  };
+  HYPRE_IJVector b, x;
+  HYPRE_ParVector parb, parx;
+  make_vector(b, parb);
+  make_vector(x, parx);
+  std::vector<HYPRE_BigInt> idx(t.n);
+  for (PetscInt i = 0; i < t.n; ++i)
+    idx[i] = i;
+
+  HYPRE_Solver gmres, amg = air_preconditioner(restriction, relax);
   HYPRE_ParCSRGMRESCreate(MPI_COMM_SELF, &gmres);
   HYPRE_GMRESSetKDim(gmres, 30);
   HYPRE_GMRESSetMaxIter(gmres, 500);
