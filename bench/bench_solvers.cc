@@ -126,6 +126,34 @@ void make_mesh(const Scene<2> &scene, unsigned int refs, unsigned int aniso,
     tria.execute_coarsening_and_refinement();
   }
 }
+/// Marches the primal or the adjoint (its goal vectors from the scene's default goals)
+/// over the slabs: "ok", or "failed" with the exception's message (CSV-safe).
+std::string march(bool adjoint, const Space<2> &space, const Scene<2> &scene,
+                  const TimeMesh &mesh, const TemporalBasis &basis, SlabOperator<2> &op,
+                  std::string &message)
+{
+  try
+  {
+    MarchOptions mo;
+    mo.label = adjoint ? "adjoint" : "primal";
+    if (adjoint)
+    {
+      const GoalVectors j = assemble_goal_vectors(space, scene.default_goals(0.01));
+      march_adjoint(space, mesh, basis, op, j, mo);
+    }
+    else
+      march_primal(space, mesh, basis, op, mo);
+    return "ok";
+  }
+  catch (const std::exception &e)
+  {
+    message = e.what();
+    for (auto &c : message)
+      if (c == '"' || c == ',' || c == '\n')
+        c = ';';
+    return "failed";
+  }
+}
 } // namespace
 
 int main(int argc, char **argv)
@@ -174,27 +202,8 @@ int main(int argc, char **argv)
   const TimeMesh mesh = TimeMesh::uniform(slabs * tau, slabs);
   SlabOperator<2> op(space, basis, o);
   const double base = current_rss_mb();
-  std::string status = "ok", message;
-  try
-  {
-    MarchOptions mo;
-    mo.label = system;
-    if (adjoint)
-    {
-      const GoalVectors j = assemble_goal_vectors(space, scene->default_goals(0.01));
-      march_adjoint(space, mesh, basis, op, j, mo);
-    }
-    else
-      march_primal(space, mesh, basis, op, mo);
-  }
-  catch (const std::exception &e)
-  {
-    status = "failed";
-    message = e.what();
-    for (auto &c : message)
-      if (c == '"' || c == ',' || c == '\n')
-        c = ';';
-  }
+  std::string message;
+  std::string status = march(adjoint, space, *scene, mesh, basis, op, message);
   const auto &t = op.timings();
   // With the default solver.fallback = direct a failed Krylov solve is redone by UMFPACK:
   // that is not an iterative success.
