@@ -154,6 +154,22 @@ GoalSpec parse_goal_item(const std::string &text, std::size_t i, const GoalSpec 
   return g;
 }
 
+namespace
+{
+/// The goals of a list's items (goal.locations, scene.goals) by parse_goal_item, their
+/// names checked by check_goal_names.
+std::vector<GoalSpec> parse_goal_list(const std::vector<std::string> &items,
+                                      const GoalSpec &defaults, const std::string &key,
+                                      const std::string &where, const Scene<2> &scene)
+{
+  std::vector<GoalSpec> goals;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    goals.push_back(parse_goal_item(items[i], i, defaults, key, where, scene));
+  check_goal_names(goals, key, where);
+  return goals;
+}
+} // namespace
+
 std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
 {
   const std::string where = in.locations_source;
@@ -165,10 +181,8 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
     defaults.kind = "";
     defaults.over_time = text.over_time;
     defaults.radius = in.radius;
-    const auto items = split_ws(text.items, ';');
-    for (std::size_t i = 0; i < items.size(); ++i)
-      goals.push_back(parse_goal_item(items[i], i, defaults, "scene.goals", where, scene));
-    check_goal_names(goals, "scene.goals", where);
+    goals = parse_goal_list(split_ws(text.items, ';'), defaults, "scene.goals", where,
+                            scene);
   }
   else if (in.kind == "scene")
     goals = scene.default_goals(in.radius);
@@ -183,9 +197,7 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
     defaults.kind = in.kind;
     defaults.over_time = in.over_time;
     defaults.radius = in.radius;
-    for (std::size_t i = 0; i < items.size(); ++i)
-      goals.push_back(parse_goal_item(items[i], i, defaults, "goal.locations", where, scene));
-    check_goal_names(goals, "goal.locations", where);
+    goals = parse_goal_list(items, defaults, "goal.locations", where, scene);
   }
   // a mollifier wider than the domain is no point goal (and makes J a domain mean)
   const auto box = scene.bounding_box();
