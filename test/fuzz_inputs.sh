@@ -253,6 +253,15 @@ check "inside the boundary edge from (1, 0) to (1, 1)" -- "$mesh" --set "scene.m
 check "the node 2 is defined twice" -- "$mesh" --set "scene.mesh_file=$(msh twice "$two
 2 1.5 0" "3 10 1 2 5 4
 3 10 2 3 6 5")"
+# structure: a format-4 header over a format-2 body (deal.II's reader allocated without
+# bound), a wrong element count, an element node $Nodes does not define
+f=$(msh v4head "$square" "3 10 1 2 3 4")
+sed -i 's/^2\.2 0 8$/4.1 0 8/' "$f"
+check "format 4 needs an \$Entities section" -- "$mesh" --set "scene.mesh_file=$f"
+f=$(msh count "$square" "3 10 1 2 3 4")
+sed -i '/^\$Elements$/{n;s/.*/3/}' "$f"
+check "\$Elements: entry 2, the element number: '\$EndElements' is not a whole number" -- "$mesh" --set "scene.mesh_file=$f"
+check "\$Elements: entry 1 refers to node 9, which \$Nodes does not define" -- "$mesh" --set "scene.mesh_file=$(msh undefined "$square" "3 10 1 2 3 9")"
 # a bow-tie (nodes 3 and 4 swapped) and a cell of zero area (all nodes on a line)
 check "has zero area, crossed edges or the wrong orientation" -- "$mesh" --set "scene.mesh_file=$(msh bowtie "$square" "3 10 1 2 4 3")"
 check "has zero area, crossed edges or the wrong orientation" -- "$mesh" --set "scene.mesh_file=$(msh flat "1 0 0

@@ -207,7 +207,9 @@ void CustomScene::Geometry::read_mesh(const SceneOptions &o, std::string &domain
   if (!in)
     throw InputError(bad + "cannot read the file '" + path.string() +
                      "'; expected a Gmsh .msh file");
-  check_msh_node_tags(in, bad + "'" + path.string() + "': ");
+  const std::string unreadable =
+      bad + "'" + path.string() + "' is not a Gmsh mesh of quadrilaterals deal.II can read: ";
+  check_msh_file(in, unreadable);
   in.clear();
   in.seekg(0);
   try
@@ -218,9 +220,7 @@ void CustomScene::Geometry::read_mesh(const SceneOptions &o, std::string &domain
   }
   catch (const std::exception &e)
   {
-    throw InputError(
-        bad + "'" + path.string() +
-        "' is not a Gmsh mesh of quadrilaterals deal.II can read: " + one_line(e.what()));
+    throw InputError(unreadable + one_line(e.what()));
   }
   domain = "the mesh " + path.string();
 }

@@ -173,24 +173,159 @@ void check_coarse_mesh(const Triangulation<2> &tria, const std::string &prefix,
   check_no_hanging_nodes(tria, ids, tol, head);
 }
 
-void check_msh_node_tags(std::istream &in, const std::string &prefix)
+namespace
 {
-  std::string line;
-  double version = 0;
-  while (std::getline(in, line))
+/// Reads the ASCII sections of a Gmsh file token by token; every read that fails or
+/// gives a count out of range throws InputError naming the section and the entry.
+class MshReader
+{
+public:
+  MshReader(std::istream &in, const std::string &prefix) : in(in), prefix(prefix) {}
+
+  /// Moves to the line that starts with `header`; false at the end of the file.
+  bool seek(const std::string &header)
   {
-    if (line.rfind("$MeshFormat", 0) == 0)
-    {
-      int binary = 0;
-      in >> version >> binary;
-      if (binary != 0)
-        return;
-    }
-    if (line.rfind("$Nodes", 0) == 0)
-      break;
+    std::string line;
+    while (std::getline(in, line))
+      if (line.rfind(header, 0) == 0)
+        return true;
+    in.clear();
+    return false;
   }
-  if (!in)
-    return;
+  void rewind()
+  {
+    in.clear();
+    in.seekg(0);
+  }
+  long long integer(const std::string &what, long long lo = 0, long long hi = 100000000)
+  {
+    long long v = 0;
+    std::string token;
+    in >> token;
+    std::size_t used = 0;
+    bool ok = !token.empty();
+    try
+    {
+      v = std::stoll(token, &used);
+    }
+    catch (const std::exception &)
+    {
+      ok = false;
+    }
+    if (!ok || used != token.size() || v < lo || v > hi)
+      fail(what + ": '" + token + "' is not a whole number in [" + std::to_string(lo) +
+           ", " + std::to_string(hi) + "]");
+    return v;
+  }
+  double real(const std::string &what)
+  {
+    std::string token;
+    in >> token;
+    std::size_t used = 0;
+    double v = 0;
+    bool ok = !token.empty();
+    try
+    {
+      v = std::stod(token, &used);
+    }
+    catch (const std::exception &)
+    {
+      ok = false;
+    }
+    if (!ok || used != token.size() || !std::isfinite(v))
+      fail(what + ": '" + token + "' is not a finite number");
+    return v;
+  }
+  void end(const std::string &section)
+  {
+    std::string token;
+    in >> token;
+    if (token != "$End" + section)
+      fail("expected $End" + section + " after the entries the $" + section +
+           " section announces, found '" + token + "' (a wrong count or a malformed entry)");
+  }
+  [[noreturn]] void fail(const std::string &what) const
+  {
+    throw InputError(prefix + what);
+  }
+
+private:
+  std::istream &in;
+  const std::string prefix;
+};
+
+/// The number of nodes of a Gmsh element type (0 for a type the check does not know).
+unsigned int nodes_of_type(long long type)
+{
+  switch (type)
+  {
+    case 15: return 1; // point
+    case 1: return 2;  // line
+    case 8: return 3;  // second-order line
+    case 2: return 3;  // triangle
+    case 3: return 4;  // quadrilateral
+    case 4: return 4;  // tetrahedron
+    case 9: return 6;  // second-order triangle
+    case 16: return 8; // serendipity quadrilateral
+    case 10: return 9; // second-order quadrilateral
+    case 5: return 8;  // hexahedron
+    default: return 0;
+  }
+}
+
+void skip_entities(MshReader &r)
+{
+  if (!r.seek("$Entities"))
+    r.fail("format 4 needs an $Entities section");
+  const long long n_points = r.integer("$Entities: the number of points"),
+                  n_curves = r.integer("$Entities: the number of curves"),
+                  n_surfaces = r.integer("$Entities: the number of surfaces"),
+                  n_volumes = r.integer("$Entities: the number of volumes");
+  for (long long i = 0; i < n_points; ++i)
+  {
+    const std::string what = "$Entities: point " + std::to_string(i + 1);
+    r.integer(what + " tag", -100000000);
+    for (int k = 0; k < 3; ++k)
+      r.real(what + " coordinate");
+    const long long tags = r.integer(what + " number of physical tags", 0, 1000);
+    for (long long k = 0; k < tags; ++k)
+      r.integer(what + " physical tag", -100000000);
+  }
+  for (long long i = 0; i < n_curves + n_surfaces + n_volumes; ++i)
+  {
+    const std::string what = "$Entities: entity " + std::to_string(n_points + i + 1);
+    r.integer(what + " tag", -100000000);
+    for (int k = 0; k < 6; ++k)
+      r.real(what + " bounding box");
+    const long long tags = r.integer(what + " number of physical tags", 0, 1000);
+    for (long long k = 0; k < tags; ++k)
+      r.integer(what + " physical tag", -100000000);
+    const long long bounding = r.integer(what + " number of bounding entities", 0, 100000);
+    for (long long k = 0; k < bounding; ++k)
+      r.integer(what + " bounding entity", -100000000);
+  }
+  r.end("Entities");
+}
+} // namespace
+
+void check_msh_file(std::istream &in, const std::string &prefix)
+{
+  MshReader r(in, prefix);
+  if (!r.seek("$MeshFormat"))
+    r.fail("no $MeshFormat section (deal.II reads Gmsh's ASCII format 2.2 or 4.1)");
+  const double version = r.real("$MeshFormat: the version");
+  const long long binary = r.integer("$MeshFormat: the file type", 0, 1);
+  if (binary != 0)
+    return; // deal.II refuses binary files itself
+  if (!(version >= 2 && version < 3) && version != 4.1)
+    r.fail("format version " + std::to_string(version) +
+           "; deal.II reads Gmsh's ASCII format 2.2 or 4.1");
+  r.integer("$MeshFormat: the data size", 1, 16);
+  r.end("MeshFormat");
+  const bool v4 = version > 3;
+  if (v4)
+    skip_entities(r);
+
   std::set<long long> tags;
   auto add = [&](long long tag)
   {
@@ -198,41 +333,104 @@ void check_msh_node_tags(std::istream &in, const std::string &prefix)
       throw InputError(prefix + "the node " + std::to_string(tag) +
                        " is defined twice in $Nodes; expected each node tag once");
   };
-  if (version < 4)
+  if (!r.seek("$Nodes"))
+    r.fail("no $Nodes section");
+  if (!v4)
   {
-    long long n = 0;
-    in >> n;
-    for (long long i = 0; i < n && in; ++i)
+    const long long n = r.integer("$Nodes: the number of nodes");
+    for (long long i = 0; i < n; ++i)
     {
-      long long tag;
-      double x, y, z;
-      in >> tag >> x >> y >> z;
-      if (in)
-        add(tag);
-    }
-    return;
-  }
-  long long blocks = 0, n = 0, min_tag, max_tag;
-  in >> blocks >> n >> min_tag >> max_tag;
-  for (long long b = 0; b < blocks && in; ++b)
-  {
-    long long dim, entity, parametric, count;
-    in >> dim >> entity >> parametric >> count;
-    std::vector<long long> block(std::max(0LL, count));
-    for (auto &t : block)
-      in >> t;
-    for (const long long t : block)
-      if (in)
-        add(t);
-    for (long long i = 0; i < count && in; ++i)
-    {
-      double x, y, z;
-      in >> x >> y >> z;
-      for (long long p = 0; p < (parametric ? dim : 0); ++p)
-        in >> x;
+      const std::string what = "$Nodes: entry " + std::to_string(i + 1);
+      add(r.integer(what + ", the node tag", 1));
+      for (int k = 0; k < 3; ++k)
+        r.real(what + ", a coordinate");
     }
   }
+  else
+  {
+    const long long blocks = r.integer("$Nodes: the number of blocks"),
+                    n = r.integer("$Nodes: the number of nodes");
+    r.integer("$Nodes: the smallest tag");
+    r.integer("$Nodes: the largest tag");
+    long long total = 0;
+    for (long long b = 0; b < blocks; ++b)
+    {
+      const std::string what = "$Nodes: block " + std::to_string(b + 1);
+      const long long dim = r.integer(what + ", the entity dimension", 0, 3);
+      r.integer(what + ", the entity tag", -100000000);
+      const long long parametric = r.integer(what + ", the parametric flag", 0, 1);
+      const long long count = r.integer(what + ", the number of nodes", 0, n - total);
+      total += count;
+      for (long long i = 0; i < count; ++i)
+        add(r.integer(what + ", a node tag", 1));
+      for (long long i = 0; i < count; ++i)
+        for (long long k = 0; k < 3 + (parametric ? dim : 0); ++k)
+          r.real(what + ", a coordinate");
+    }
+    if (total != n)
+      r.fail("$Nodes announces " + std::to_string(n) + " nodes, its blocks hold " +
+             std::to_string(total));
+  }
+  r.end("Nodes");
+
+  if (!r.seek("$Elements"))
+    r.fail("no $Elements section");
+  auto element = [&](const std::string &what, long long type)
+  {
+    const unsigned int n_nodes = nodes_of_type(type);
+    if (n_nodes == 0)
+      r.fail(what + ": element type " + std::to_string(type) +
+             " is none of Gmsh's point, line, triangle or quadrilateral types");
+    for (unsigned int k = 0; k < n_nodes; ++k)
+    {
+      const long long node = r.integer(what + ", a node", 1, 1000000000000LL);
+      if (!tags.count(node))
+        r.fail(what + " refers to node " + std::to_string(node) +
+               ", which $Nodes does not define");
+    }
+  };
+  if (!v4)
+  {
+    const long long n = r.integer("$Elements: the number of elements");
+    for (long long i = 0; i < n; ++i)
+    {
+      const std::string what = "$Elements: entry " + std::to_string(i + 1);
+      r.integer(what + ", the element number", 1, 1000000000000LL);
+      const long long type = r.integer(what + ", the type", 1, 200);
+      const long long n_tags = r.integer(what + ", the number of tags", 0, 100);
+      for (long long k = 0; k < n_tags; ++k)
+        r.integer(what + ", a tag", -100000000);
+      element(what, type);
+    }
+  }
+  else
+  {
+    const long long blocks = r.integer("$Elements: the number of blocks"),
+                    n = r.integer("$Elements: the number of elements");
+    r.integer("$Elements: the smallest tag");
+    r.integer("$Elements: the largest tag");
+    long long total = 0;
+    for (long long b = 0; b < blocks; ++b)
+    {
+      const std::string what = "$Elements: block " + std::to_string(b + 1);
+      r.integer(what + ", the entity dimension", 0, 3);
+      r.integer(what + ", the entity tag", -100000000);
+      const long long type = r.integer(what + ", the type", 1, 200);
+      const long long count = r.integer(what + ", the number of elements", 0, n - total);
+      total += count;
+      for (long long i = 0; i < count; ++i)
+      {
+        r.integer(what + ", an element tag", 1, 1000000000000LL);
+        element(what, type);
+      }
+    }
+    if (total != n)
+      r.fail("$Elements announces " + std::to_string(n) + " elements, its blocks hold " +
+             std::to_string(total));
+  }
+  r.end("Elements");
 }
+
 void check_repetitions(const std::string &name, const std::string &arguments,
                        const std::string &where)
 {

@@ -25,10 +25,14 @@ namespace anisodwr
 void check_coarse_mesh(const dealii::Triangulation<2> &tria, const std::string &prefix,
                        const std::string &domain);
 
-/// Throws InputError(prefix + ...) naming the tag if a node tag of the Gmsh file `in`
-/// (ASCII format 2 or 4) is defined twice (deal.II keeps the last definition). Reads
-/// `in` to its end; binary files and files without a $Nodes section pass.
-void check_msh_node_tags(std::istream &in, const std::string &prefix);
+/// Throws InputError(prefix + ...) naming the section and the
+/// entry where the ASCII Gmsh file `in` (format 2.x or 4.1) departs from its structure:
+/// a count or number that does not parse or is out of range, a section whose entries do
+/// not end at its $End line, an unknown element type, an element node that $Nodes does
+/// not define; and InputError naming the tag if a node tag is defined twice (deal.II
+/// keeps the last definition). deal.II's reader does not check these: a malformed count
+/// can make it allocate without bound. Binary files pass (deal.II refuses them).
+void check_msh_file(std::istream &in, const std::string &prefix);
 
 /// Throws InputError("<where>: key 'scene.grid_arguments' ...") if the generator `name`
 /// is subdivided_hyper_rectangle or subdivided_hyper_cube and its first argument (the
