@@ -244,6 +244,34 @@ public:
       fail("expected $End" + section + " after the entries the $" + section +
            " section announces, found '" + token + "' (a wrong count or a malformed entry)");
   }
+  /// The counts line of a format-4 section: the number of blocks (returned) and of
+  /// entries (n); the smallest and largest tags are read over.
+  long long blocks(const std::string &section, long long &n)
+  {
+    const long long b = integer("$" + section + ": the number of blocks");
+    n = integer("$" + section + ": the number of entries");
+    integer("$" + section + ": the smallest tag");
+    integer("$" + section + ": the largest tag");
+    return b;
+  }
+  /// The first three numbers of a block's line (entity dimension, entity tag, the
+  /// third: parametric flag or element type, returned) and its number of entries,
+  /// at most `room` (what the section's count leaves).
+  long long block(const std::string &what, const std::string &third, long long third_hi,
+                  long long room, long long &dim, long long &count)
+  {
+    dim = integer(what + ", the entity dimension", 0, 3);
+    integer(what + ", the entity tag", -100000000);
+    const long long v = integer(what + ", " + third, 0, third_hi);
+    count = integer(what + ", the number of entries", 0, room);
+    return v;
+  }
+  void totals(const std::string &section, long long n, long long total)
+  {
+    if (total != n)
+      fail("$" + section + " announces " + std::to_string(n) + " entries, its blocks hold " +
+           std::to_string(total));
+  }
   [[noreturn]] void fail(const std::string &what) const
   {
     throw InputError(prefix + what);
@@ -348,18 +376,13 @@ void check_msh_file(std::istream &in, const std::string &prefix)
   }
   else
   {
-    const long long blocks = r.integer("$Nodes: the number of blocks"),
-                    n = r.integer("$Nodes: the number of nodes");
-    r.integer("$Nodes: the smallest tag");
-    r.integer("$Nodes: the largest tag");
-    long long total = 0;
+    long long n = 0, total = 0;
+    const long long blocks = r.blocks("Nodes", n);
     for (long long b = 0; b < blocks; ++b)
     {
       const std::string what = "$Nodes: block " + std::to_string(b + 1);
-      const long long dim = r.integer(what + ", the entity dimension", 0, 3);
-      r.integer(what + ", the entity tag", -100000000);
-      const long long parametric = r.integer(what + ", the parametric flag", 0, 1);
-      const long long count = r.integer(what + ", the number of nodes", 0, n - total);
+      long long dim = 0, count = 0;
+      const long long parametric = r.block(what, "the parametric flag", 1, n - total, dim, count);
       total += count;
       for (long long i = 0; i < count; ++i)
         add(r.integer(what + ", a node tag", 1));
@@ -367,9 +390,7 @@ void check_msh_file(std::istream &in, const std::string &prefix)
         for (long long k = 0; k < 3 + (parametric ? dim : 0); ++k)
           r.real(what + ", a coordinate");
     }
-    if (total != n)
-      r.fail("$Nodes announces " + std::to_string(n) + " nodes, its blocks hold " +
-             std::to_string(total));
+    r.totals("Nodes", n, total);
   }
   r.end("Nodes");
 
@@ -405,18 +426,13 @@ void check_msh_file(std::istream &in, const std::string &prefix)
   }
   else
   {
-    const long long blocks = r.integer("$Elements: the number of blocks"),
-                    n = r.integer("$Elements: the number of elements");
-    r.integer("$Elements: the smallest tag");
-    r.integer("$Elements: the largest tag");
-    long long total = 0;
+    long long n = 0, total = 0;
+    const long long blocks = r.blocks("Elements", n);
     for (long long b = 0; b < blocks; ++b)
     {
       const std::string what = "$Elements: block " + std::to_string(b + 1);
-      r.integer(what + ", the entity dimension", 0, 3);
-      r.integer(what + ", the entity tag", -100000000);
-      const long long type = r.integer(what + ", the type", 1, 200);
-      const long long count = r.integer(what + ", the number of elements", 0, n - total);
+      long long dim = 0, count = 0;
+      const long long type = r.block(what, "the type", 200, n - total, dim, count);
       total += count;
       for (long long i = 0; i < count; ++i)
       {
@@ -424,9 +440,7 @@ void check_msh_file(std::istream &in, const std::string &prefix)
         element(what, type);
       }
     }
-    if (total != n)
-      r.fail("$Elements announces " + std::to_string(n) + " elements, its blocks hold " +
-             std::to_string(total));
+    r.totals("Elements", n, total);
   }
   r.end("Elements");
 }
