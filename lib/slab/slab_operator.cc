@@ -364,7 +364,10 @@ template <int dim>
 void SlabOperator<dim>::solve_transposed(const std::vector<const Vector<double> *> &loads,
                                          const std::vector<Vector<double> *> &U)
 {
-  if (use_iterative || loads.size() < 2)
+  // The direct solves run side by side in threads, except with MUMPS: one MUMPS
+  // instance takes one call at a time, and under mpirun its messages from two threads
+  // would interleave (hemker.json's two goals crashed in DMUMPS_BUF_SEND on 2 ranks).
+  if (use_iterative || loads.size() < 2 || opt.direct_solver == DirectEngine::mumps)
   {
     for (std::size_t i = 0; i < loads.size(); ++i)
       solve(*loads[i], *U[i], true);
