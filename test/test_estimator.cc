@@ -588,3 +588,21 @@ TEST(LoopRow, EtaPartsAbsSumsUnsignedPartsPerGoal)
   row.eta_goal_parts.pop_back();
   EXPECT_DOUBLE_EQ(row.eta_parts_abs(), 1.5 + 2.5 + 1.5);
 }
+
+// adaptivity.tolerance_measure = goals: max_i |w_i eta_i| over the goals' own
+// estimates; |eta_tau h| of the weighted goal where the goals have none. Two goals
+// whose weighted estimates cancel in the sum (0.3 - 0.3) keep the larger one.
+TEST(LoopRow, EtaGoalsMaxTakesTheLargestWeightedGoalEstimate)
+{
+  LoopRow row;
+  row.eta_h_total = -0.2;
+  row.eta_tau = 0.05;
+  EXPECT_DOUBLE_EQ(row.eta_goals_max(), 0.15);
+  row.weights = {1., -2.};
+  row.eta_goal = {0.3, 0.15};
+  EXPECT_DOUBLE_EQ(row.eta_goals_max(), 0.3);
+  row.eta_goal = {0.3, -0.4};
+  EXPECT_DOUBLE_EQ(row.eta_goals_max(), 0.8);
+  row.eta_goal.pop_back(); // not every goal has its own estimate
+  EXPECT_DOUBLE_EQ(row.eta_goals_max(), 0.15);
+}

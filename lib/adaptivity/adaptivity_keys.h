@@ -44,13 +44,20 @@ enum class ToleranceMeasure
   /// LoopRow::eta_parts_abs(): |eta_h,x| + |eta_h,y| + |eta_tau| without signs, per goal
   /// where each goal has its own estimate; cancellation between the parts or between
   /// the goals cannot make it small
-  parts
+  parts,
+  /// LoopRow::eta_goals_max(): max_i |w_i eta_i|, each goal's own signed estimate
+  /// (one adjoint per goal); with goal.weights = auto or estimate the largest relative
+  /// error estimate of a single goal. The goals cannot cancel each other; a goal's
+  /// space and time parts can (each goal's signed estimate is trusted)
+  goals
 };
 
 inline const std::vector<Named<ToleranceMeasure>> &names(ToleranceMeasure)
 {
   static const std::vector<Named<ToleranceMeasure>> table{
-      {ToleranceMeasure::eta, "eta"}, {ToleranceMeasure::parts, "parts"}};
+      {ToleranceMeasure::eta, "eta"},
+      {ToleranceMeasure::parts, "parts"},
+      {ToleranceMeasure::goals, "goals"}};
   return table;
 }
 

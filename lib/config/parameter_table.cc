@@ -492,7 +492,11 @@ std::vector<Entry> adaptivity_entries()
        "estimate per goal (per_goal_estimates, goal.weights = estimate) the sum over the "
        "goals of |w_i| times each goal's parts (loops.csv eta_abs). The signed parts "
        "cancel on coarse meshes (doc/results.md), so eta can stop a run whose error is "
-       "many times the tolerance; parts is never below eta."},
+       "many times the tolerance; parts is never below eta. goals: max_i |w_i eta_i|, the "
+       "largest of the goals' own signed estimates (one adjoint per goal, as with "
+       "per_goal_estimates), with goal.weights = auto or estimate the largest relative "
+       "error of a single goal: the goals cannot cancel each other, a goal's space and "
+       "time parts can (config/hemker.json, doc/configs.md#hemker)."},
       {"adaptivity", "max_dofs", "0", m(&S::max_dofs), real(0.),
        "Stop before a loop whose N_tot would exceed this (0: no budget)."},
       {"adaptivity", "max_memory_mb", "0", m(&S::max_memory_mb), real(0.),

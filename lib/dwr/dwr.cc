@@ -63,7 +63,8 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
       goals(make_goals(goal_input(prm), *scene)),
       auto_weights(prm.goal.weights == "auto"),
       estimate_weights(prm.goal.weights == "estimate"),
-      by_goal(estimate_weights || prm.adaptivity.per_goal_estimates),
+      by_goal(estimate_weights || prm.adaptivity.per_goal_estimates ||
+              prm.adaptivity.tolerance_measure == ToleranceMeasure::goals),
       error_reference(scene->exact()                      ? "exact"
                       : std::isnan(goals.front().reference) ? "none"
                                                             : "goal.reference"),
@@ -357,9 +358,10 @@ bool AdaptiveLoop::stop_after(const LoopRow &row)
 {
   if (row.loop == prm.adaptivity.loops)
     return true;
-  const double estimate = prm.adaptivity.tolerance_measure == ToleranceMeasure::parts
-                             ? row.eta_parts_abs()
-                             : std::abs(row.eta_h_total + row.eta_tau);
+  const ToleranceMeasure measure = prm.adaptivity.tolerance_measure;
+  const double estimate = measure == ToleranceMeasure::parts   ? row.eta_parts_abs()
+                          : measure == ToleranceMeasure::goals ? row.eta_goals_max()
+                                                               : std::abs(row.eta_h_total + row.eta_tau);
   if (prm.adaptivity.tolerance > 0 && estimate < prm.adaptivity.tolerance)
   {
     stop_reason = "tolerance";

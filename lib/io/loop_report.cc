@@ -3,6 +3,8 @@
 #include "base/mpi.h"
 #include "io/table.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -67,6 +69,16 @@ std::vector<double> LoopRow::all_values() const
             no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest,
             eta_parts_abs(), hanging_gap, eta_h_data, double(bound_cuts)});
   return v;
+}
+
+double LoopRow::eta_goals_max() const
+{
+  if (eta_goal.empty() || eta_goal.size() != weights.size())
+    return std::abs(eta_h_total + eta_tau);
+  double m = 0;
+  for (std::size_t g = 0; g < eta_goal.size(); ++g)
+    m = std::max(m, std::abs(weights[g] * eta_goal[g]));
+  return m;
 }
 
 double LoopRow::eta_parts_abs() const

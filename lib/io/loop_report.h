@@ -68,6 +68,9 @@ struct LoopRow
   /// The spatial and the temporal share of eta_parts_abs(): |eta_h,x| + |eta_h,y| and
   /// |eta_tau|, per goal weighted by |w_i| when every goal has its own parts.
   double eta_space_abs() const;
+  /// max_i |w_i eta_i| over the goals' own estimates (eta_goal), or |eta_tau h| of the
+  /// weighted goal where the goals have none; adaptivity.tolerance_measure = goals.
+  double eta_goals_max() const;
   double eta_time_abs() const;
   /// The first 18 columns of loop_columns.
   std::vector<double> values() const;
