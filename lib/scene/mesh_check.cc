@@ -192,11 +192,6 @@ public:
     in.clear();
     return false;
   }
-  void rewind()
-  {
-    in.clear();
-    in.seekg(0);
-  }
   long long integer(const std::string &what, long long lo = 0, long long hi = 100000000)
   {
     long long v = 0;
@@ -244,30 +239,30 @@ public:
       fail("expected $End" + section + " after the entries the $" + section +
            " section announces, found '" + token + "' (a wrong count or a malformed entry)");
   }
-  /// The counts line of a format-4 section: the number of blocks (returned) and of
-  /// entries (n); the smallest and largest tags are read over.
-  long long blocks(const std::string &section, long long &n)
+  /// A format-4 section's blocks: the counts line (blocks, entries, smallest and
+  /// largest tag), then per block its line (entity dimension, entity tag, `third`:
+  /// parametric flag or element type, at most third_hi; the number of entries, at most
+  /// what the section's count leaves) and body(what, third, dim, count), which reads
+  /// the block's entries. The blocks must hold the announced number of entries.
+  template <typename Body>
+  void each_block(const std::string &section, const std::string &third, long long third_hi,
+                  const Body &body)
   {
-    const long long b = integer("$" + section + ": the number of blocks");
-    n = integer("$" + section + ": the number of entries");
+    const long long blocks = integer("$" + section + ": the number of blocks"),
+                    n = integer("$" + section + ": the number of entries");
     integer("$" + section + ": the smallest tag");
     integer("$" + section + ": the largest tag");
-    return b;
-  }
-  /// The first three numbers of a block's line (entity dimension, entity tag, the
-  /// third: parametric flag or element type, returned) and its number of entries,
-  /// at most `room` (what the section's count leaves).
-  long long block(const std::string &what, const std::string &third, long long third_hi,
-                  long long room, long long &dim, long long &count)
-  {
-    dim = integer(what + ", the entity dimension", 0, 3);
-    integer(what + ", the entity tag", -100000000);
-    const long long v = integer(what + ", " + third, 0, third_hi);
-    count = integer(what + ", the number of entries", 0, room);
-    return v;
-  }
-  void totals(const std::string &section, long long n, long long total)
-  {
+    long long total = 0;
+    for (long long b = 0; b < blocks; ++b)
+    {
+      const std::string what = "$" + section + ": block " + std::to_string(b + 1);
+      const long long dim = integer(what + ", the entity dimension", 0, 3);
+      integer(what + ", the entity tag", -100000000);
+      const long long v = integer(what + ", " + third, 0, third_hi);
+      const long long count = integer(what + ", the number of entries", 0, n - total);
+      total += count;
+      body(what, v, dim, count);
+    }
     if (total != n)
       fail("$" + section + " announces " + std::to_string(n) + " entries, its blocks hold " +
            std::to_string(total));
@@ -376,21 +371,16 @@ void check_msh_file(std::istream &in, const std::string &prefix)
   }
   else
   {
-    long long n = 0, total = 0;
-    const long long blocks = r.blocks("Nodes", n);
-    for (long long b = 0; b < blocks; ++b)
-    {
-      const std::string what = "$Nodes: block " + std::to_string(b + 1);
-      long long dim = 0, count = 0;
-      const long long parametric = r.block(what, "the parametric flag", 1, n - total, dim, count);
-      total += count;
-      for (long long i = 0; i < count; ++i)
-        add(r.integer(what + ", a node tag", 1));
-      for (long long i = 0; i < count; ++i)
-        for (long long k = 0; k < 3 + (parametric ? dim : 0); ++k)
-          r.real(what + ", a coordinate");
-    }
-    r.totals("Nodes", n, total);
+    r.each_block("Nodes", "the parametric flag", 1,
+                 [&](const std::string &what, long long parametric, long long dim,
+                     long long count)
+                 {
+                   for (long long i = 0; i < count; ++i)
+                     add(r.integer(what + ", a node tag", 1));
+                   for (long long i = 0; i < count; ++i)
+                     for (long long k = 0; k < 3 + (parametric ? dim : 0); ++k)
+                       r.real(what + ", a coordinate");
+                 });
   }
   r.end("Nodes");
 
@@ -426,21 +416,15 @@ void check_msh_file(std::istream &in, const std::string &prefix)
   }
   else
   {
-    long long n = 0, total = 0;
-    const long long blocks = r.blocks("Elements", n);
-    for (long long b = 0; b < blocks; ++b)
-    {
-      const std::string what = "$Elements: block " + std::to_string(b + 1);
-      long long dim = 0, count = 0;
-      const long long type = r.block(what, "the type", 200, n - total, dim, count);
-      total += count;
-      for (long long i = 0; i < count; ++i)
-      {
-        r.integer(what + ", an element tag", 1, 1000000000000LL);
-        element(what, type);
-      }
-    }
-    r.totals("Elements", n, total);
+    r.each_block("Elements", "the type", 200,
+                 [&](const std::string &what, long long type, long long, long long count)
+                 {
+                   for (long long i = 0; i < count; ++i)
+                   {
+                     r.integer(what + ", an element tag", 1, 1000000000000LL);
+                     element(what, type);
+                   }
+                 });
   }
   r.end("Elements");
 }
