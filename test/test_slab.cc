@@ -5,9 +5,13 @@
 #include "slab/primal_march.h"
 #include "study/error_norms.h"
 #include "study/options.h"
+#include "time/kronecker.h"
 
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
@@ -229,6 +233,81 @@ TEST_P(SlabByDegree, KroneckerEqualsDirectSpaceTimeAssembly)
   K.Tvmult(y2, x);
   y2 -= y1;
   EXPECT_LT(y2.linfty_norm(), 1e-12 * max_entry * x.l1_norm());
+
+  // So do the products from the summed m x m blocks (the Krylov path's operator).
+  KronBlocks blocks;
+  blocks.reinit(op.full_terms());
+  ASSERT_EQ(blocks.size(), K.m());
+  for (const bool transpose : {false, true})
+  {
+    transpose ? blocks.Tvmult(y1.data(), x.data()) : blocks.vmult(y1.data(), x.data());
+    transpose ? K.Tvmult(y2, x) : K.vmult(y2, x);
+    y2 -= y1;
+    EXPECT_LT(y2.linfty_norm(), 1e-12 * max_entry * x.l1_norm()) << "transpose " << transpose;
+  }
+}
+
+TEST(KronBlocks, ProductsEqualTheAssembledSumForEveryBlockSize)
+{
+  // three terms with random temporal factors on a Q1 pattern with hanging nodes;
+  // m = 1..4 take the fixed-size kernels, m = 5 the general one
+  Triangulation<2> tria;
+  GridGenerator::hyper_cube(tria);
+  tria.refine_global(2);
+  tria.begin_active()->set_refine_flag();
+  tria.execute_coarsening_and_refinement();
+  const FE_Q<2> fe(1);
+  DoFHandler<2> dofs(tria);
+  dofs.distribute_dofs(fe);
+  DynamicSparsityPattern dsp(dofs.n_dofs());
+  DoFTools::make_sparsity_pattern(dofs, dsp);
+  SparsityPattern pattern;
+  pattern.copy_from(dsp);
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> dist(-1., 1.);
+  std::vector<SparseMatrix<double>> S(3);
+  for (auto &s : S)
+  {
+    s.reinit(pattern);
+    for (auto &e : s)
+      e.value() = dist(gen);
+  }
+  for (unsigned int m = 1; m <= 5; ++m)
+  {
+    std::vector<KronTerm> terms;
+    for (const auto &s : S)
+    {
+      FullMatrix<double> T(m, m);
+      for (unsigned int k = 0; k < m; ++k)
+        for (unsigned int l = 0; l < m; ++l)
+          T(k, l) = dist(gen);
+      terms.push_back({T, &s});
+    }
+    SparsityPattern kp;
+    make_kron_sparsity(pattern, m, kp);
+    SparseMatrix<double> K;
+    assemble_kron(terms, kp, K);
+    KronBlocks blocks;
+    blocks.reinit(terms);
+    Vector<double> x(K.m()), y1(K.m()), y2(K.m());
+    for (auto &v : x)
+      v = dist(gen);
+    for (const bool transpose : {false, true})
+    {
+      transpose ? blocks.Tvmult(y1.data(), x.data()) : blocks.vmult(y1.data(), x.data());
+      transpose ? K.Tvmult(y2, x) : K.vmult(y2, x);
+      y2 -= y1;
+      EXPECT_LT(y2.linfty_norm(), 1e-13 * K.linfty_norm() * x.linfty_norm())
+          << "m = " << m << ", transpose " << transpose;
+    }
+  }
+  // terms on two different patterns are refused
+  SparsityPattern other;
+  other.copy_from(dsp);
+  SparseMatrix<double> s_other(other);
+  KronBlocks blocks;
+  EXPECT_THROW(blocks.reinit({{FullMatrix<double>(1, 1), &S[0]}, {FullMatrix<double>(1, 1), &s_other}}),
+               std::logic_error);
 }
 
 INSTANTIATE_TEST_SUITE_P(RAndSupg, SlabByDegree,

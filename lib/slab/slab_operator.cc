@@ -212,32 +212,75 @@ void SlabOperator<dim>::assemble_terms(double t_start, double tau_n, bool consta
     // r+2 Gauss points integrate polynomial-in-t coefficients of degree <= 2 exactly.
     std::vector<double> sq, wq;
     gauss_rule(m + 1, sq, wq);
-    mats.resize(sq.size() + 1);
+    std::vector<FullMatrix<double>> Tm(sq.size()), Ta(sq.size());
     for (unsigned int q = 0; q < sq.size(); ++q)
     {
-      matrices_at(t_start + sq[q] * tau_n, tau_n, mats[q]);
       std::vector<double> l = basis.values(sq[q]), dl(m);
       for (unsigned int k = 0; k < m; ++k)
         dl[k] = basis.derivative(k, sq[q]);
-      FullMatrix<double> Tm = outer(l, dl), Ta = outer(l, l);
-      Tm *= wq[q];
-      Ta *= wq[q] * tau_n;
-      terms_full.push_back({Tm, &mats[q].M});
-      terms_full.push_back({Ta, &mats[q].A});
-      terms_cond.push_back({Tm, &mats[q].Mc});
-      terms_cond.push_back({Ta, &mats[q].Ac});
+      Tm[q] = outer(l, dl);
+      Ta[q] = outer(l, l);
+      Tm[q] *= wq[q];
+      Ta[q] *= wq[q] * tau_n;
     }
-    auto &mj = mats.back();
-    matrices_at(t_start, tau_n, mj);
     const FullMatrix<double> Tj = outer(basis.left_trace(), basis.left_trace());
-    terms_full.push_back({Tj, &mj.M});
-    terms_cond.push_back({Tj, &mj.Mc});
+    mats.resize(sq.size() + 1);
+    auto &mj = mats.back();
+    if (const auto *nodes = time_nodes(tau_n))
+    {
+      // The matrices at the quadrature points are combinations of the node matrices:
+      // K's terms are the node matrices, each with its share of the temporal factors,
+      // so that no quadrature point's matrices are formed.
+      std::vector<FullMatrix<double>> TM(nodes->size(), FullMatrix<double>(m, m)),
+          TA = TM;
+      for (unsigned int q = 0; q < sq.size(); ++q)
+      {
+        const std::vector<double> l = time_node_weights(t_start + sq[q] * tau_n);
+        for (unsigned int c = 0; c < nodes->size(); ++c)
+        {
+          TM[c].add(l[c], Tm[q]);
+          TA[c].add(l[c], Ta[q]);
+        }
+      }
+      const std::vector<double> lj = time_node_weights(t_start);
+      for (unsigned int c = 0; c < nodes->size(); ++c)
+      {
+        TM[c].add(lj[c], Tj);
+        terms_full.push_back({TM[c], &(*nodes)[c].M});
+        terms_full.push_back({TA[c], &(*nodes)[c].A});
+        terms_cond.push_back({TM[c], &(*nodes)[c].Mc});
+        terms_cond.push_back({TA[c], &(*nodes)[c].Ac});
+      }
+      matrices_at(t_start, tau_n, mj, true);
+      // the middle point's matrices only for a Kronecker preconditioner's split
+      if ((opt.type == SolverType::iterative || opt.type == SolverType::automatic) &&
+          is_kronecker(opt.iterative.preconditioner))
+        matrices_at(t_start + sq[sq.size() / 2] * tau_n, tau_n, mats[sq.size() / 2]);
+      else
+        mats[sq.size() / 2] = SpatialMatrices();
+    }
+    else
+    {
+      for (unsigned int q = 0; q < sq.size(); ++q)
+      {
+        matrices_at(t_start + sq[q] * tau_n, tau_n, mats[q]);
+        terms_full.push_back({Tm[q], &mats[q].M});
+        terms_full.push_back({Ta[q], &mats[q].A});
+        terms_cond.push_back({Tm[q], &mats[q].Mc});
+        terms_cond.push_back({Ta[q], &mats[q].Ac});
+      }
+      matrices_at(t_start, tau_n, mj);
+      terms_full.push_back({Tj, &mj.M});
+      terms_cond.push_back({Tj, &mj.Mc});
+    }
     jump_M = &mj.M;
     // Kronecker preconditioner: D (x) M + tau Mhat (x) A frozen at the middle Gauss point.
     FullMatrix<double> tM(basis.mass());
     tM *= tau_n;
     const auto &mid = mats[sq.size() / 2];
-    kron = {basis.derivative_with_jump(), tM, &mid.Mc, &mid.Ac};
+    kron = KronSplit();
+    if (!mid.Mc.empty())
+      kron = {basis.derivative_with_jump(), tM, &mid.Mc, &mid.Ac};
   }
 }
 
@@ -457,7 +500,7 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
     matrix.assembled = k_assembled ? &K : nullptr;
     matrix.terms = &terms_cond;
     matrix.m = basis.n_dofs();
-    matrix.split = &kron;
+    matrix.split = kron.S1 ? &kron : nullptr;
     matrix.modes = frozen_modes() ? &frozen.lu : nullptr;
     solver->setup(matrix, transpose);
     krylov[d] = std::move(solver);

@@ -38,8 +38,9 @@ struct SlabTimings
   unsigned long inner_iterations = 0;
   /// preconditioner = modes: factorizations of the frozen operator
   unsigned int n_frozen_factorizations = 0;
-  /// coefficients that depend on time: spatial assemblies, and the temporal quadrature
-  /// points whose matrices were interpolated in time instead (TimeInterpolation)
+  /// coefficients that depend on time: spatial assemblies, and the spatial matrix sets
+  /// formed by interpolation in time instead (TimeInterpolation: the jump's
+  /// mass per slab, a frozen operator's set; K itself takes the node matrices as terms)
   unsigned int n_spatial_assemblies = 0, n_interpolated = 0;
 };
 
@@ -154,9 +155,14 @@ private:
     std::vector<SpatialMatrices> at_nodes;
   };
   std::map<double, TimeInterpolation> interpolation;
+  /// The node matrices of the interpolation in time for slabs of length tau_n (built and
+  /// checked on first use), or null where it is off, not exact or not kept.
+  const std::vector<SpatialMatrices> *time_nodes(double tau_n);
+  /// The weights of the node matrices at time t (Lagrange polynomials of the nodes).
+  std::vector<double> time_node_weights(double t) const;
   /// The spatial matrices at time t for slabs of length tau_n: interpolated where the
-  /// check passed, else assembled.
-  void matrices_at(double t, double tau_n, SpatialMatrices &m);
+  /// check passed, else assembled. With `mass_only`, an interpolation forms M only.
+  void matrices_at(double t, double tau_n, SpatialMatrices &m, bool mass_only = false);
   /// Assembles the spatial matrices at t_start + tau_n/2 and factorizes the frozen
   /// operator D (x) Mc + tau Mhat (x) Ac by its temporal modes.
   void freeze(double t_start, double tau_n);

@@ -6,6 +6,7 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include <array>
+#include <initializer_list>
 #include <cmath>
 #include <utility>
 
@@ -26,25 +27,32 @@ double time_node(unsigned int k, double T)
   return 0.5 * T * (1. - std::cos((2. * k + 1.) * M_PI / (2. * n_time_nodes)));
 }
 
-/// m := sum_k l_k(t) at_nodes[k] (l_k the Lagrange polynomials of the time nodes).
-void interpolate(const std::vector<SpatialMatrices> &at_nodes, double t, double T,
-                 SpatialMatrices &m)
+/// The Lagrange polynomials of the time nodes at t.
+std::vector<double> time_node_weights(double t, double T)
 {
   std::vector<double> l(n_time_nodes, 1.);
   for (unsigned int k = 0; k < n_time_nodes; ++k)
     for (unsigned int j = 0; j < n_time_nodes; ++j)
       if (j != k)
         l[k] *= (t - time_node(j, T)) / (time_node(k, T) - time_node(j, T));
-  const auto parts = [](SpatialMatrices &x)
-  { return std::array<SparseMatrix<double> *, 4>{{&x.M, &x.A, &x.Mc, &x.Ac}}; };
-  const auto from = [](const SpatialMatrices &x)
-  { return std::array<const SparseMatrix<double> *, 4>{{&x.M, &x.A, &x.Mc, &x.Ac}}; };
-  const auto out = parts(m);
-  for (unsigned int p = 0; p < 4; ++p)
+  return l;
+}
+
+/// m := sum_k l_k(t) at_nodes[k] (l_k the Lagrange polynomials of the time nodes),
+/// for the parts M, A, M_c, A_c named in `parts` (0..3).
+void interpolate(const std::vector<SpatialMatrices> &at_nodes, double t, double T,
+                 SpatialMatrices &m, std::initializer_list<unsigned int> parts = {0, 1, 2, 3})
+{
+  const std::vector<double> l = time_node_weights(t, T);
+  const auto out = [&m](unsigned int p)
+  { return std::array<SparseMatrix<double> *, 4>{{&m.M, &m.A, &m.Mc, &m.Ac}}[p]; };
+  const auto in = [](const SpatialMatrices &x, unsigned int p)
+  { return std::array<const SparseMatrix<double> *, 4>{{&x.M, &x.A, &x.Mc, &x.Ac}}[p]; };
+  for (const unsigned int p : parts)
   {
-    out[p]->reinit(from(at_nodes[0])[p]->get_sparsity_pattern());
+    out(p)->reinit(in(at_nodes[0], p)->get_sparsity_pattern());
     for (unsigned int k = 0; k < n_time_nodes; ++k)
-      out[p]->add(l[k], *from(at_nodes[k])[p]);
+      out(p)->add(l[k], *in(at_nodes[k], p));
   }
 }
 
@@ -79,32 +87,28 @@ bool agree(const SpatialMatrices &a, SpatialMatrices &b)
 } // namespace
 
 template <int dim>
-void SlabOperator<dim>::matrices_at(double t, double tau_n, SpatialMatrices &m)
+const std::vector<SpatialMatrices> *SlabOperator<dim>::time_nodes(double tau_n)
 {
+  if (!opt.time_interpolation)
+    return nullptr;
   const double T = space.scene.end_time;
   // one set for all slab lengths unless delta_K depends on tau (keys rounded so that
   // equal lengths computed as differences share one)
   const double key = space.delta_depends_on_tau() ? std::round(tau_n / T * 1e12) : -1.;
-  if (!opt.time_interpolation)
-  {
-    space.assemble_matrices(t, tau_n, m);
-    ++time.n_spatial_assemblies;
-    return;
-  }
   auto it = interpolation.find(key);
   if (it == interpolation.end() && interpolation.size() >= max_time_interpolations)
-  {
-    // memory: at most two slab lengths keep their node matrices; others assemble
-    space.assemble_matrices(t, tau_n, m);
-    ++time.n_spatial_assemblies;
-    return;
-  }
+    return nullptr; // memory: at most two slab lengths keep their node matrices
   if (it == interpolation.end())
   {
     TimeInterpolation ti;
     ti.at_nodes.resize(n_time_nodes);
     for (unsigned int k = 0; k < n_time_nodes; ++k)
+    {
       space.assemble_matrices(time_node(k, T), tau_n, ti.at_nodes[k]);
+      // all nodes carry the first one's constrained diagonal: their combinations
+      // (weights summing to 1) then carry it too
+      constrained_diagonal(space.constraints(), ti.at_nodes[0], ti.at_nodes[k]);
+    }
     time.n_spatial_assemblies += n_time_nodes;
     bool exact = true;
     for (const double check : {0.3819660112501051 * T, 0.8541019662496845 * T})
@@ -114,17 +118,31 @@ void SlabOperator<dim>::matrices_at(double t, double tau_n, SpatialMatrices &m)
       ++time.n_spatial_assemblies;
       constrained_diagonal(space.constraints(), ti.at_nodes[0], assembled);
       interpolate(ti.at_nodes, check, T, interpolated);
-      constrained_diagonal(space.constraints(), ti.at_nodes[0], interpolated);
       exact = exact && agree(assembled, interpolated);
     }
     if (!exact)
       ti.at_nodes.clear();
     it = interpolation.emplace(key, std::move(ti)).first;
   }
-  if (!it->second.at_nodes.empty())
+  return it->second.at_nodes.empty() ? nullptr : &it->second.at_nodes;
+}
+
+template <int dim>
+std::vector<double> SlabOperator<dim>::time_node_weights(double t) const
+{
+  return anisodwr::time_node_weights(t, space.scene.end_time);
+}
+
+template <int dim>
+void SlabOperator<dim>::matrices_at(double t, double tau_n, SpatialMatrices &m,
+                                    bool mass_only)
+{
+  if (const auto *nodes = time_nodes(tau_n))
   {
-    interpolate(it->second.at_nodes, t, T, m);
-    constrained_diagonal(space.constraints(), it->second.at_nodes[0], m);
+    if (mass_only)
+      interpolate(*nodes, t, space.scene.end_time, m, {0});
+    else
+      interpolate(*nodes, t, space.scene.end_time, m);
     ++time.n_interpolated;
   }
   else
@@ -134,5 +152,7 @@ void SlabOperator<dim>::matrices_at(double t, double tau_n, SpatialMatrices &m)
   }
 }
 
-template void SlabOperator<2>::matrices_at(double, double, SpatialMatrices &);
+template const std::vector<SpatialMatrices> *SlabOperator<2>::time_nodes(double);
+template std::vector<double> SlabOperator<2>::time_node_weights(double) const;
+template void SlabOperator<2>::matrices_at(double, double, SpatialMatrices &, bool);
 } // namespace anisodwr

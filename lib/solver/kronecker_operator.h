@@ -7,7 +7,8 @@
 
 namespace anisodwr::tpetra
 {
-/// Matrix-free K = sum_t T_t (x) S_t (or K^T): m spatial products per term.
+/// K = sum_t T_t (x) S_t (or K^T) applied from its m x m blocks per spatial entry
+/// (KronBlocks), on the Tpetra vectors' own storage.
 class KroneckerOperator : public OP
 {
 public:
@@ -21,14 +22,9 @@ public:
              double alpha = 1., double beta = 0.) const override;
 
 private:
-  struct Term
-  {
-    dealii::FullMatrix<double> T;
-    RCP<Matrix> S;
-  };
-  unsigned int m = 1;
-  RCP<const Map> slab_map, space_map;
-  std::vector<Term> terms;
-  std::vector<RCP<Vec>> xs, ys, sx;
+  RCP<const Map> slab_map;
+  KronBlocks K;
+  bool transpose;
+  mutable std::vector<double> y;
 };
 } // namespace anisodwr::tpetra
