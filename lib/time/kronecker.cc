@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 namespace anisodwr
 {
@@ -31,15 +32,26 @@ void make_kron_sparsity(const SparsityPattern &spatial, unsigned int m, Sparsity
   out.compress();
 }
 
+namespace
+{
+/// The spatial pattern all terms' S share; throws (naming `who`) if there are no terms
+/// or they do not share one.
+const SparsityPattern &shared_pattern(const std::vector<KronTerm> &terms, const char *who)
+{
+  if (terms.empty())
+    throw std::logic_error(std::string(who) + ": no terms");
+  const SparsityPattern &pattern = terms[0].S->get_sparsity_pattern();
+  for (const auto &t : terms)
+    if (&t.S->get_sparsity_pattern() != &pattern)
+      throw std::logic_error(std::string(who) + ": spatial matrices must share one pattern");
+  return pattern;
+}
+} // namespace
+
 void assemble_kron(const std::vector<KronTerm> &terms, const SparsityPattern &pattern,
                    SparseMatrix<double> &K)
 {
-  if (terms.empty())
-    throw std::logic_error("assemble_kron: no terms");
-  const SparsityPattern &spatial = terms[0].S->get_sparsity_pattern();
-  for (const auto &t : terms)
-    if (&t.S->get_sparsity_pattern() != &spatial)
-      throw std::logic_error("assemble_kron: spatial matrices must share one pattern");
+  const SparsityPattern &spatial = shared_pattern(terms, "assemble_kron");
   const unsigned int m = terms[0].T.m();
   const SlabLayout slab{m};
   K.reinit(pattern);
@@ -84,12 +96,7 @@ void assemble_kron(const std::vector<KronTerm> &terms, const SparsityPattern &pa
 
 void KronBlocks::reinit(const std::vector<KronTerm> &terms)
 {
-  if (terms.empty())
-    throw std::logic_error("KronBlocks: no terms");
-  const SparsityPattern &pattern = terms[0].S->get_sparsity_pattern();
-  for (const auto &t : terms)
-    if (&t.S->get_sparsity_pattern() != &pattern)
-      throw std::logic_error("KronBlocks: spatial matrices must share one pattern");
+  const SparsityPattern &pattern = shared_pattern(terms, "KronBlocks");
   n = pattern.n_rows();
   m = terms[0].T.m();
   rowstart.assign(n + 1, 0);
@@ -124,79 +131,56 @@ void KronBlocks::reinit(const std::vector<KronTerm> &terms)
 
 namespace
 {
-/// The block products for a block size known at compile time (M > 0) or not (M = 0).
-template <unsigned int M>
-void block_vmult(std::size_t n, unsigned int m_run, const std::size_t *rowstart,
-                 const types::global_dof_index *cols, const double *blocks, double *dst,
-                 const double *src)
-{
-  const unsigned int m = M ? M : m_run;
-  const std::size_t mm = std::size_t(m) * m;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    double *y = dst + i * m;
-    for (unsigned int k = 0; k < m; ++k)
-      y[k] = 0.;
-    for (std::size_t q = rowstart[i]; q < rowstart[i + 1]; ++q)
-    {
-      const double *x = src + std::size_t(cols[q]) * m, *b = blocks + q * mm;
-      for (unsigned int k = 0; k < m; ++k)
-        for (unsigned int l = 0; l < m; ++l)
-          y[k] += b[k * m + l] * x[l];
-    }
-  }
-}
-
-template <unsigned int M>
-void block_Tvmult(std::size_t n, unsigned int m_run, const std::size_t *rowstart,
-                  const types::global_dof_index *cols, const double *blocks, double *dst,
-                  const double *src)
+/// dst = K src (or K^T src) from the blocks, for a block size known at compile time
+/// (M > 0) or not (M = 0).
+template <bool transpose, unsigned int M>
+void block_product(std::size_t n, unsigned int m_run, const std::size_t *rowstart,
+                   const types::global_dof_index *cols, const double *blocks,
+                   double *__restrict dst, const double *__restrict src)
 {
   const unsigned int m = M ? M : m_run;
   const std::size_t mm = std::size_t(m) * m;
   std::fill(dst, dst + n * m, 0.);
   for (std::size_t i = 0; i < n; ++i)
-  {
-    const double *x = src + i * m;
     for (std::size_t q = rowstart[i]; q < rowstart[i + 1]; ++q)
     {
-      double *y = dst + std::size_t(cols[q]) * m;
+      const std::size_t j = cols[q];
       const double *b = blocks + q * mm;
-      for (unsigned int k = 0; k < m; ++k)
-        for (unsigned int l = 0; l < m; ++l)
-          y[l] += b[k * m + l] * x[k];
+      if (transpose) // block (i, j) of K is block (j, i) of K^T, transposed
+        for (unsigned int k = 0; k < m; ++k)
+          for (unsigned int l = 0; l < m; ++l)
+            dst[j * m + l] += b[k * m + l] * src[i * m + k];
+      else
+        for (unsigned int k = 0; k < m; ++k)
+          for (unsigned int l = 0; l < m; ++l)
+            dst[i * m + k] += b[k * m + l] * src[j * m + l];
     }
-  }
 }
 
+template <bool transpose>
+void block_product(std::size_t n, unsigned int m, const std::size_t *rowstart,
+                   const types::global_dof_index *cols, const double *blocks, double *dst,
+                   const double *src)
+{
+  switch (m)
+  {
+    case 1: return block_product<transpose, 1>(n, m, rowstart, cols, blocks, dst, src);
+    case 2: return block_product<transpose, 2>(n, m, rowstart, cols, blocks, dst, src);
+    case 3: return block_product<transpose, 3>(n, m, rowstart, cols, blocks, dst, src);
+    case 4: return block_product<transpose, 4>(n, m, rowstart, cols, blocks, dst, src);
+    default: return block_product<transpose, 0>(n, m, rowstart, cols, blocks, dst, src);
+  }
+}
 } // namespace
 
 void KronBlocks::vmult(double *dst, const double *src) const
 {
-  const auto run = [&](auto kernel)
-  { kernel(n, m, rowstart.data(), cols.data(), blocks.data(), dst, src); };
-  switch (m)
-  {
-    case 1: run(block_vmult<1>); break;
-    case 2: run(block_vmult<2>); break;
-    case 3: run(block_vmult<3>); break;
-    case 4: run(block_vmult<4>); break;
-    default: run(block_vmult<0>);
-  }
+  block_product<false>(n, m, rowstart.data(), cols.data(), blocks.data(), dst, src);
 }
 
 void KronBlocks::Tvmult(double *dst, const double *src) const
 {
-  const auto run = [&](auto kernel)
-  { kernel(n, m, rowstart.data(), cols.data(), blocks.data(), dst, src); };
-  switch (m)
-  {
-    case 1: run(block_Tvmult<1>); break;
-    case 2: run(block_Tvmult<2>); break;
-    case 3: run(block_Tvmult<3>); break;
-    case 4: run(block_Tvmult<4>); break;
-    default: run(block_Tvmult<0>);
-  }
+  block_product<true>(n, m, rowstart.data(), cols.data(), blocks.data(), dst, src);
 }
 
 void vmult_kron(const std::vector<KronTerm> &terms, const Vector<double> &src,
