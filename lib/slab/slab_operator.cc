@@ -510,7 +510,7 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
   }
   Vector<double> x(rhs.size());
   if (guess[d].size() == rhs.size())
-    x = guess[d];
+    initial_guess(d, x);
   try
   {
     const KrylovStats stats = krylov[d]->solve(rhs, x);
@@ -547,11 +547,42 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
     setup_time += timer.wall_time();
     lu.solve(rhs, transpose);
     guess[d] = rhs;
+    guess_slab[d] = {t0, tau};
     return setup_time;
   }
   guess[d] = x;
+  guess_slab[d] = {t0, tau};
   rhs = x;
   return setup_time;
+}
+
+template <int dim>
+void SlabOperator<dim>::initial_guess(int d, Vector<double> &x) const
+{
+  const auto [g0, gtau] = guess_slab[d];
+  if (g0 == t0 && gtau == tau)
+  {
+    x = guess[d]; // the same slab (another load of solve_transposed)
+    return;
+  }
+  // the previous slab's polynomial in time, continued to this slab's temporal nodes
+  const unsigned int m = basis.n_dofs();
+  FullMatrix<double> W(m, m); // W(j, k) = l_k at this slab's node j
+  for (unsigned int j = 0; j < m; ++j)
+  {
+    const std::vector<double> l = basis.values((t0 + basis.nodes()[j] * tau - g0) / gtau);
+    for (unsigned int k = 0; k < m; ++k)
+      W(j, k) = l[k];
+  }
+  const std::size_t n = x.size() / m;
+  for (std::size_t i = 0; i < n; ++i)
+    for (unsigned int j = 0; j < m; ++j)
+    {
+      double v = 0;
+      for (unsigned int k = 0; k < m; ++k)
+        v += W(j, k) * guess[d][i * m + k];
+      x[i * m + j] = v;
+    }
 }
 
 template class SlabOperator<2>;

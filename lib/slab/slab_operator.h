@@ -19,6 +19,7 @@
 
 #include <map>
 #include <memory>
+#include <utility>
 
 namespace anisodwr
 {
@@ -76,9 +77,9 @@ public:
   /// nodes and the hanging-node constraints. `load` and U are interleaved full vectors.
   /// If `transpose`, solves K_n^T U = load with homogeneous constraints (adjoint).
   /// Iterative path: the preconditioner is built on first use per direction and reused
-  /// while K_n is unchanged; the previous solve's solution is the initial guess. A failed
-  /// Krylov solve throws (KrylovFailure) or, with fallback = direct, is redone by UMFPACK
-  /// (which then serves the remaining slabs with the same K_n).
+  /// while K_n is unchanged; the previous solve's solution, continued in time, is the
+  /// initial guess. A failed Krylov solve throws (KrylovFailure) or, with fallback =
+  /// direct, is redone by UMFPACK (which then serves the remaining slabs with the same K_n).
   void solve(const dealii::Vector<double> &load, dealii::Vector<double> &U,
              bool transpose = false);
   /// K_n^T U[i] = loads[i] for every i, as solve(loads[i], U[i], true); with a direct
@@ -129,6 +130,12 @@ private:
   KronSplit kron;
   std::unique_ptr<IterativeSlabSolver> krylov[2]; // [transpose]
   dealii::Vector<double> guess[2];
+  /// the slab (t0, tau) each guess was solved on
+  std::pair<double, double> guess_slab[2] = {{0., -1.}, {0., -1.}};
+  /// The Krylov solve's initial guess from the previous solve in direction d: on the
+  /// same slab that solution, else the previous slab's polynomial in time continued to
+  /// this slab's temporal nodes (an O(tau^(r+1)) guess for a smooth solution).
+  void initial_guess(int d, dealii::Vector<double> &x) const;
   bool lu_valid = false, k_assembled = false;
   /// The Krylov options in force (solver.iterative, or auto's choice).
   IterativeOptions it_opt;
