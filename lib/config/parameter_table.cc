@@ -281,8 +281,9 @@ std::vector<Entry> solver_entries()
        "the first two slab lengths met) and, "
        "where their cubic interpolant reproduces the matrices assembled at two further "
        "times to 1e-12 relative (b and alpha polynomial in t of degree <= 3 with the "
-       "SUPG terms), form each temporal quadrature point's matrices from them instead of "
-       "assembling them; otherwise, and with false, every slab assembles its own."},
+       "SUPG terms), build each slab operator from them (the 4 node matrices as its "
+       "Kronecker terms) instead of assembling the temporal quadrature points' matrices; "
+       "otherwise, and with false, every slab assembles its own."},
       {"solver", "reuse_factorization", "true", m(&S::reuse_factorization), boolean,
        "Reuse the LU factorization (or the preconditioner) while the slab matrix is "
        "unchanged (same tau, coefficients constant in time)."},
