@@ -1,0 +1,152 @@
+// The parameter table: the keys of section adaptivity (see parameter_table.cc for the entry format).
+#include "config/table_binding.h"
+
+namespace anisodwr::config::table
+{
+std::vector<Entry> adaptivity_entries()
+{
+  using S = AdaptivitySection;
+  const auto m = [](auto member) { return at(&Parameters::adaptivity, member); };
+  return {
+      {"adaptivity", "mode", "anisotropic", m(&S::mode), by_name,
+       "anisotropic: mark per direction by |eta_h,i|; isotropic: mark by |eta_h|, refine "
+       "isotropically; uniform: refine every cell."},
+      {"adaptivity", "marking", "cell", m(&S::marking), by_name,
+       "Anisotropic marking. joint: rank all (cell, direction) pairs by |eta_h,i^K| and "
+       "mark the theta_h fraction of the pairs; per_direction: mark the theta_h fraction "
+       "of cells in each direction separately (refines layer cells in every direction); "
+       "cell: mark the theta_h fraction of cells by sum_i |eta_h,i^K| and cut each "
+       "marked "
+       "cell in direction i only where |eta_h,i^K| >= adaptivity.kappa * max_j "
+       "|eta_h,j^K|."},
+      {"adaptivity", "marking_criterion", "count", m(&S::marking_criterion), by_name,
+       "How many cells (joint: pairs) theta_h selects. count: the theta_h fraction of "
+       "them, largest indicators first; bulk: the fewest largest ones whose indicators "
+       "sum to theta_h of the total (Doerfler; few cells where the error is "
+       "concentrated). Cells, pairs or directions as adaptivity.marking ranks them; "
+       "the coarsening and theta_tau stay by count."},
+      {"adaptivity", "kappa", "0.75", m(&S::kappa), real(0., 1.),
+       "marking = cell: a marked cell is cut in direction i iff |eta_h,i^K| >= kappa * "
+       "its largest directional indicator, in [0,1] (1: the dominant direction only; 0: "
+       "isotropic).",
+       "a fraction in [0, 1]", Check::fraction},
+      {"adaptivity", "loops", "6", m(&S::loops), integer(1, 1000),
+       "Maximum number of DWR loops."},
+      {"adaptivity", "theta_h", "0.25", m(&S::theta_h), real(0.),
+       "Fraction of cells marked (adaptivity.marking says of which ranking; "
+       "adaptivity.marking_criterion whether of their count or of the indicators' "
+       "sum), in [0,1].",
+       "a fraction in [0, 1]", Check::fraction},
+      {"adaptivity", "theta_tau", "1", m(&S::theta_tau), real(0.),
+       "Fraction of slabs bisected (largest |eta_tau^n|) in a loop that refines time "
+       "(adaptivity.time_balance), in [0,1]; 0 keeps the time mesh. Default 1: a moving "
+       "feature needs every slab refined, and time_balance already keeps time "
+       "refinement to the loops where eta_tau is not small.",
+       "a fraction in [0, 1]", Check::fraction},
+      {"adaptivity", "time_balance", "0.5", m(&S::time_balance), real(0.),
+       "Balance of time and space refinement, b: a loop bisects slabs (theta_tau) if "
+       "|eta_tau| >= b (|eta_h,x| + |eta_h,y|) and refines cells if |eta_h,x| + "
+       "|eta_h,y| >= b |eta_tau| (or if it bisects no slab), with the shares of eta_abs "
+       "(per goal, weighted by |w_i|, where each goal has its own estimate). So time is "
+       "refined where eta_tau dominates, space where eta_h does, both where they are "
+       "within a factor 1/b; 0: both in every loop."},
+      {"adaptivity", "theta_coarsen", "0", m(&S::theta_coarsen), real(0.),
+       "Fraction of cells (smallest |eta_h|) flagged for coarsening, in [0,1].",
+       "a fraction in [0, 1]", Check::fraction},
+      {"adaptivity", "tolerance", "0", m(&S::tolerance), real(0.),
+       "Stop when the estimate named by adaptivity.tolerance_measure is below tolerance "
+       "(0: no tolerance). It bounds the error of the combined goal J_w = sum_i w_i J_i "
+       "within the effectivity band (doc/results.md, 'Error control without tuning'): "
+       "absolute in J_w's units for numeric goal.weights, relative for goal.weights = "
+       "estimate (the default) or auto (w_i = +-1/|J_i(u_h)|: the sum over the goals of "
+       "their relative errors; with estimate each goal's error relative to the larger of "
+       "|J_i(u_h)| and 1% of |J_i(1)| max|u_h|)."},
+      {"adaptivity", "tolerance_measure", "parts", m(&S::tolerance_measure), by_name,
+       "What adaptivity.tolerance bounds. eta: |eta_tau_h|, the signed sum of all "
+       "indicators; parts: |eta_h,x| + |eta_h,y| + |eta_tau| without signs, and with one "
+       "estimate per goal (per_goal_estimates, goal.weights = estimate) the sum over the "
+       "goals of |w_i| times each goal's parts (loops.csv eta_abs). The signed parts "
+       "cancel on coarse meshes (doc/results.md), so eta can stop a run whose error is "
+       "many times the tolerance; parts is never below eta. goals: max_i |w_i eta_i|, the "
+       "largest of the goals' own signed estimates (one adjoint per goal, as with "
+       "per_goal_estimates), with goal.weights = auto or estimate the largest relative "
+       "error of a single goal: the goals cannot cancel each other, a goal's space and "
+       "time parts can (config/hemker.json, doc/configs.md#hemker)."},
+      {"adaptivity", "max_dofs", "0", m(&S::max_dofs), real(0.),
+       "Stop before a loop whose N_tot would exceed this (0: no budget)."},
+      {"adaptivity", "max_memory_mb", "0", m(&S::max_memory_mb), real(0.),
+       "Memory budget in MB (0: the physical memory). Before each DWR loop (and "
+       "before a single run or convergence level) the peak memory is estimated from "
+       "the DoFs of the primal and adjoint spaces, r, the number of slabs and the "
+       "solver (DWR: scaled by the last loop's measured/estimated peak when that is "
+       "above 1); a loop whose estimate exceeds the budget is not started: exit code "
+       "2, summary.json status 'stopped'."},
+      {"adaptivity", "max_wall_time", "0", m(&S::max_wall_time), real(0.),
+       "Wall-time budget in seconds (0: none): no new loop starts when the time so far "
+       "plus twice the last loop's time would exceed it."},
+      {"adaptivity", "time_indicator", "higher_order", m(&S::time_indicator), by_name,
+       "Form of eta_tau. average: 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u); "
+       "adjoint_residual: rho*(u,z)(E u - u), exact up to the reconstruction of the "
+       "primal alone; use it when the adjoint is not resolved in time (point goals at T "
+       "with |b| tau >> goal.radius, see doc/results.md); higher_order: rho*(u,z)(u' - "
+       "u) "
+       "with u' the primal solved once more in dG(r+1) (one more primal solve per loop), "
+       "which does not rely on dG(r)'s nodal superconvergence and sees the temporal "
+       "error "
+       "at T."},
+      {"adaptivity", "per_goal_estimates", "false", m(&S::per_goal_estimates), boolean,
+       "Solve one adjoint per goal (one factorization serves them all) and report each "
+       "goal's own eta_tau h and I_eff (loops.csv: eta_<goal>, I_eff_<goal>), so that "
+       "cancellation between goals in the combined estimate is visible. The combined "
+       "indicators are then the weighted sum of the goals' own; costs one adjoint solve "
+       "and estimate per goal instead of one in all."},
+      {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
+       "March the adjoint(s) in a second thread while the primal marches (with "
+       "goal.weights = auto and one adjoint for the weighted goal: assemble and "
+       "factorize the adjoint's slab operator there, and march once the primal has "
+       "given the weights), when one MPI rank "
+       "and more than one thread run, both slab systems are predicted to go to UMFPACK, "
+       "and the loop's memory estimate with both factorizations held at once fits the "
+       "memory limit; otherwise (and with false) the primal, then the adjoint. The "
+       "results are the same either way; t_primal and t_adjoint then overlap."},
+      {"adaptivity", "measure_time_error", "false", m(&S::measure_time_error), boolean,
+       "Diagnostic: on every loop solve the primal on the loop's spatial mesh with its "
+       "slabs, bisected once and bisected twice, all with the SUPG parameters of the "
+       "finest (delta_K <= supg_tau_factor * tau_n / 4), and report the extrapolated "
+       "temporal goal error next to eta_tau (loops.csv: err_tau, err_tau_order; "
+       "err_time_<goal> per goal); costs 7 primal solves per slab."},
+      {"adaptivity", "adjoint_degree", "0", m(&S::adjoint_degree), integer(0, 8),
+       "Polynomial degree q of the adjoint; 0 means q = 2p."},
+      {"adaptivity", "space_indicator", "primal_residual", m(&S::space_indicator), by_name,
+       "Form of eta_h,i. average: 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - "
+       "u) + SUPG terms (doc/method.md §8; where a cell has no directional lift only the primal "
+       "half); primal_residual: rho(u)(z - R_i z) + S(u)(R_h z), the primal residual "
+       "alone, which needs no lift of u (the default: doc/results.md, 'Error control "
+       "without tuning'). Both carry the Dirichlet data's share -int eps (g - u_h) d_n z "
+       "on Gamma_D (loops.csv eta_h_data)."},
+      {"adaptivity", "adjoint_stabilization", "transposed", m(&S::adjoint_stabilization),
+       by_name,
+       "transposed: the adjoint is the transpose of the SUPG-stabilized primal operator "
+       "in degree q (doc/method.md §5); none: the adjoint is the Galerkin (delta = 0) discretization "
+       "of the continuous adjoint, consistent with it; the estimator's S terms still use "
+       "the primal's delta_K."},
+      {"adaptivity", "adjoint_delta0", "-1", m(&S::adjoint_delta0), real(-1.),
+       "delta0 of the transposed SUPG adjoint (adjoint_stabilization = transposed); negative "
+       "(default -1): discretization.delta0. The estimator's S terms always use the primal's delta_K."},
+      {"adaptivity", "adjoint_inverse_bound", "true", m(&S::adjoint_inverse_bound), boolean,
+       "Bound the transposed SUPG adjoint's delta_K <= h_min,K^2 / (eps q^4) (h_min,K the "
+       "shortest vertex distance of K): the inverse estimate's bound that keeps the SUPG "
+       "term's eps Lap part below the diffusion. Without it the adjoint of degree q = 4 "
+       "grows without bound on thin cells (doc/results.md, 'Error control without "
+       "tuning'); false: delta_K = adjoint_delta0 h_K alone."},
+      {"adaptivity", "bound_refinement", "0", m(&S::bound_refinement), real(0.),
+       "Refinement where u_h leaves its bounds (probes.csv's u_min, u_max: the scene's, "
+       "the exact solution's or the data's by the maximum principle): a cell with a "
+       "nodal value at a slab end outside [u_min - f R, u_max + f R] (f this value, R = "
+       "u_max - u_min) that is at least 10 times longer along b than across is also "
+       "halved along b, beside the marking (loops.csv `bound_cuts`). SUPG oscillates on "
+       "such cells where the solution changes along the flow (Hemker: the top of the "
+       "circle, doc/results.md). 0: off; no effect without bounds."},
+  };
+}
+} // namespace anisodwr::config::table
