@@ -10,6 +10,7 @@
 #include "io/loop_report.h"
 #include "slab/adjoint_march.h"
 #include "slab/primal_march.h"
+#include "space/stabilization_terms.h"
 #include "study/options.h"
 #include "time/slab_vector.h"
 
@@ -21,6 +22,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 using namespace anisodwr;
@@ -139,7 +141,7 @@ struct Problem
       supg->set_crosswind_scale(scale);
     }
     for (const auto &cell : tria.active_cell_iterators())
-      if (crosswind(variant) && !(supg->crosswind(cell).eps > 0.))
+      if (crosswind(variant) && !supg->cell_diffusion(cell).active)
         throw std::logic_error("the crosswind term must act on every cell");
     galerkin->setup();
     supg->setup();
@@ -272,12 +274,12 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
   GoalSpec at_T, over_I;
   at_T.name = "mean_T";
   at_T.kind = "mean";
-  at_T.lower = {0.25, 0.25}; // rectangles on cell faces: both goal representations
-  at_T.upper = {0.75, 0.75}; // integrate them exactly
+  // rectangles x0, y0, x1, y1 on cell faces: both goal representations integrate them
+  // exactly
+  at_T.location = {0.25, 0.25, 0.75, 0.75};
   over_I.name = "mean_I";
   over_I.kind = "mean";
-  over_I.lower = {0.5, 0.};
-  over_I.upper = {1., 0.5};
+  over_I.location = {0.5, 0., 1., 0.5};
   over_I.over_time = true;
   over_I.weight = 0.5;
   for (const auto &goals :
@@ -605,4 +607,43 @@ TEST(LoopRow, EtaGoalsMaxTakesTheLargestWeightedGoalEstimate)
   EXPECT_DOUBLE_EQ(row.eta_goals_max(), 0.8);
   row.eta_goal.pop_back(); // not every goal has its own estimate
   EXPECT_DOUBLE_EQ(row.eta_goals_max(), 0.15);
+}
+
+// The crosswind entry of the stabilization terms' table: D_K = eps_cw a a^T with a the
+// unit vector across b, eps_cw = s_K crosswind0 max(0, |b| h_cw / 2 - eps); nothing along b.
+TEST(StabilizationTerms, CrosswindDiffusesAcrossBOnly)
+{
+  const auto &terms = diffusion_terms();
+  const auto it = std::find_if(terms.begin(), terms.end(),
+                               [](const DiffusionTerm &t) { return t.name == "crosswind"; });
+  ASSERT_NE(it, terms.end());
+  Stabilization stab;
+  EXPECT_FALSE(it->active(stab)); // crosswind0 = 0 by default
+  stab.crosswind0 = 0.8;
+  EXPECT_TRUE(it->active(stab));
+  StabilizationCell cell;
+  cell.b[0] = 3.;
+  cell.b[1] = 4.;
+  cell.epsilon = 1e-3;
+  double asked = 0.;
+  cell.length_along = [&asked](const dealii::Tensor<1, 2> &a) {
+    asked = a[0] * 0.8 + a[1] * -0.6; // a must be +-(-4, 3) / 5
+    return 0.1;
+  };
+  cell.switch_factor = 0.5;
+  const dealii::Tensor<2, 2> D = it->diffusion(stab, cell);
+  EXPECT_NEAR(std::abs(asked), 1., 1e-15);
+  const double eps_cw = 0.5 * 0.8 * (0.5 * 5. * 0.1 - 1e-3);
+  dealii::Tensor<1, 2> across;
+  across[0] = -0.8;
+  across[1] = 0.6;
+  EXPECT_NEAR(across * (D * across), eps_cw, 1e-15);
+  EXPECT_NEAR((D * cell.b).norm(), 0., 1e-15);
+  EXPECT_EQ(D[0][1], D[1][0]);
+  // resolved across b (|b| h_cw / 2 <= eps) or switched off: no diffusion
+  cell.epsilon = 1.;
+  EXPECT_EQ(it->diffusion(stab, cell).norm(), 0.);
+  cell.epsilon = 1e-3;
+  cell.switch_factor = 0.;
+  EXPECT_EQ(it->diffusion(stab, cell).norm(), 0.);
 }

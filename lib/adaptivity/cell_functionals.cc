@@ -59,7 +59,7 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
       {
         const Tensor<1, dim> &gw = fv_w.shape_grad(l, q);
         rho.val[m](l) += jx * R * fv_w.shape_value(l, q);
-        supg.val[m](l) += jx * (weak_form::crosswind(cw.eps, cw.b, grad, gw) -
+        supg.val[m](l) += jx * (weak_form::cell_diffusion(cw.D, grad, gw) -
                                 R * weak_form::supg_test(delta, cf.b, gw));
       }
     }
@@ -116,8 +116,8 @@ template <int dim> void CellKernel<dim>::nodal_products(const Vector<double> &Un
     for (unsigned int l = 0; l < np; ++l)
       c(l) = Un(slab.index(idx[l], k));
     sv::vmult(terms[0], own_flux, c);
-    // (the crosswind matrix [4] only where the cell has the term)
-    const unsigned int n_matrices = constant_coefficients ? (cw.eps != 0. ? 5 : 4) : 0;
+    // (the stabilization terms' matrix [4] only where a term acts on the cell)
+    const unsigned int n_matrices = constant_coefficients ? (cw.active ? 5 : 4) : 0;
     for (unsigned int i = 0; i < n_matrices; ++i)
       sv::vmult(terms[i + 1], primal_matrices[i], c);
     for (const auto &pc : pieces)
@@ -201,8 +201,8 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau,
       sv::vmult(kz[k], Kc, nodal[k]);
       if (scale != 1.)
         kz[k] *= scale;
-      if (supg && cw.eps != 0.) // S' also holds the crosswind form
-        sv::add_vmult(kz[k], cw.eps, adj_matrices[4], nodal[k]);
+      if (supg && cw.active) // S' also holds the stabilization terms' form
+        sv::add_vmult(kz[k], 1., adj_matrices[4], nodal[k]);
       sv::vmult(mz[k], Mc, nodal[k]);
       sv::add(A.jump, scale * basis.left_trace()[k], mz[k]);
     }
@@ -250,7 +250,7 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau,
           A.val[m](l) +=
               jx * (weak_form::strong(cf, phi, gphi, trace(fv_w.shape_hessian(l, q))) *
                         test +
-                    weak_form::crosswind(cw.eps, cw.b, gphi, gz));
+                    weak_form::cell_diffusion(cw.D, gphi, gz));
         else
           A.val[m](l) += jx * weak_form::galerkin(cf, phi, gphi, zq, gz);
       }

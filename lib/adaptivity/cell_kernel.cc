@@ -70,7 +70,7 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
   fv_p.reinit(cell);
   fv_w.reinit(typename Triangulation<dim>::cell_iterator(cell));
   delta_h = primal.unbounded_delta(cell);
-  cw = primal.crosswind(cell);
+  cw = primal.cell_diffusion(cell);
   for (unsigned int j = 0; j < load_terms.size(); ++j)
     for (unsigned int q = 0; q < quad.size(); ++q)
       load_at_q[j][q] = load_terms[j].g(fv_p.quadrature_point(q));

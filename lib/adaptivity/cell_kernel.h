@@ -157,7 +157,7 @@ private:
   std::vector<std::vector<double>> ell, dell;
   cell_iterator K;
   double delta_h = 0; // delta_K before the bound by tau_n
-  typename Space<dim>::Crosswind cw; // the cell's crosswind diffusion (Space::crosswind)
+  typename Space<dim>::CellDiffusion cw; // the stabilization terms' D_K (Space::cell_diffusion)
   std::vector<dealii::types::global_dof_index> idx;
   std::vector<Piece> pieces;
   mutable std::array<dealii::Vector<double>, 3> scratch; // cell-local coefficient buffers
@@ -165,15 +165,15 @@ private:
 
   /// For coefficients constant in time, A(.)(z) and S'(., z) are cell matrices applied
   /// to z (per unit temporal weight): [0] A's val part, [1] A's dt/jump part, [2] S'
-  /// val part, [3] S' dt/jump part, [4] the crosswind form per unit eps_cw (rows: the
-  /// first slot, columns: z).
+  /// val part, [3] S' dt/jump part, [4] the stabilization terms' (D_K grad ., grad z) (rows:
+  /// the first slot, columns: z).
   const bool constant_coefficients;
   std::array<dealii::FullMatrix<double>, 5> adj_matrices;
   /// rho(u) and S(u) as cell matrices on u's coefficients, per unit temporal weight (S
   /// per unit delta_K), for coefficients constant in time: [0] rho from u (-(L u, w)),
   /// [1] rho from d_t u and from the jump u^+ - u^- (-(u, w)), [2] S from u
   /// ((L u, b.grad w)), [3] S from d_t u and the jump ((u, b.grad w)), [4] S's
-  /// crosswind part per unit eps_cw ((P grad u, P grad w)); with a separable load,
+  /// stabilization terms' part ((D_K grad u, grad w)); with a separable load,
   /// (g_j, w) and (g_j, b.grad w) per term j.
   std::array<dealii::FullMatrix<double>, 5> primal_matrices;
   std::vector<dealii::Vector<double>> load_rho, load_supg;

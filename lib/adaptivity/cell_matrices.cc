@@ -25,8 +25,8 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
   //   A_t: phi_l z_j;  S': strong(phi_l) s_j;  S'_t: phi_l s_j   (s = supg_test per
   //   unit delta_K)
   //   rho: -strong(u_k) phi_l, -u_k phi_l;  S: strong(u_k) s_l, u_k s_l
-  //   crosswind (per unit eps_cw): P grad phi_l . P grad z_j and P grad phi_l . grad u_k
-  //   (P the projection across b; P^T P = P)
+  //   the stabilization terms (Space::cell_diffusion): D_K grad phi_l . grad z_j and
+  //   D_K grad phi_l . grad u_k (D_K symmetric)
   const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell(),
                      nq = quad.size();
   FullMatrix<double> phi(nw, nq), dphi(nw, nq), s(nw, nq), ds(nw, nq), dop(nw, nq),
@@ -52,13 +52,12 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
       }
       grads(l, dim * nq + q) = p;
       dgrads(l, dim * nq + q) = jx * weak_form::transport(c, p, gp);
-      // P grad phi_l, with the weight, from weak_form's form on unit vectors
+      // grad phi_l, and D_K grad phi_l with the weight
+      const Tensor<1, dim> Dg = cw.D * gp;
       for (unsigned int d = 0; d < dim; ++d)
       {
-        Tensor<1, dim> e;
-        e[d] = 1.;
-        pg(l, d * nq + q) = weak_form::crosswind(1., cw.b, gp, e);
-        dpg(l, d * nq + q) = jx * pg(l, d * nq + q);
+        pg(l, d * nq + q) = gp[d];
+        dpg(l, d * nq + q) = jx * Dg[d];
       }
     }
     for (unsigned int k = 0; k < np; ++k)
@@ -84,7 +83,7 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
   primal_matrices[1] *= -1.;
   ds.mTmult(primal_matrices[2], lu);
   ds.mTmult(primal_matrices[3], u);
-  if (cw.eps != 0.)
+  if (cw.active)
   {
     dpg.mTmult(adj_matrices[4], pg);
     dpg.mTmult(primal_matrices[4], gu);
@@ -123,8 +122,8 @@ void CellKernel<dim>::add_cell_terms_by_matrices(unsigned int m, double t, doubl
     sv::add(rho.val[m], d, terms[2]);
     sv::add(supg.val[m], delta * v, terms[3]);
     sv::add(supg.val[m], delta * d, terms[4]);
-    if (cw.eps != 0.)
-      sv::add(supg.val[m], cw.eps * v, terms[5]);
+    if (cw.active)
+      sv::add(supg.val[m], v, terms[5]);
   }
   if (separable_load)
   {

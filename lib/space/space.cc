@@ -1,5 +1,6 @@
 #include "space/space.h"
 
+#include "space/stabilization_terms.h"
 #include "space/weak_form.h"
 
 #include <deal.II/base/function.h>
@@ -11,6 +12,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <cmath>
+#include <optional>
 
 namespace anisodwr
 {
@@ -111,26 +113,25 @@ double Space<dim>::unbounded_delta(const typename Triangulation<dim>::cell_itera
 }
 
 template <int dim>
-typename Space<dim>::Crosswind
-Space<dim>::crosswind(const typename Triangulation<dim>::cell_iterator &cell) const
+typename Space<dim>::CellDiffusion
+Space<dim>::cell_diffusion(const typename Triangulation<dim>::cell_iterator &cell) const
 {
-  if (stab.crosswind0 == 0.)
-    return {};
-  static_assert(dim == 2, "the crosswind direction is defined in 2D");
-  const Tensor<1, dim> b = scene.convection(cell->center(), 0.);
-  const double nb = b.norm();
-  if (nb == 0.)
-    return {};
-  Tensor<1, dim> across;
-  across[0] = -b[1] / nb;
-  across[1] = b[0] / nb;
-  const double scale =
-      cw_scale.empty() || !cell->is_active() ? 1. : cw_scale[cell->active_cell_index()];
-  if (scale == 0.)
-    return {};
-  return {scale * stab.crosswind0 *
-              std::max(0., 0.5 * nb * length_along(cell, across) - scene.epsilon),
-          b};
+  static_assert(dim == 2, "the stabilization terms are defined in 2D");
+  CellDiffusion sum;
+  std::optional<StabilizationCell> seen; // formed for the first active term only
+  for (const DiffusionTerm &term : diffusion_terms())
+  {
+    if (!term.active(stab))
+      continue;
+    if (!seen)
+      seen = StabilizationCell{
+          scene.convection(cell->center(), 0.), scene.epsilon,
+          [this, &cell](const Tensor<1, dim> &beta) { return length_along(cell, beta); },
+          cw_scale.empty() || !cell->is_active() ? 1. : cw_scale[cell->active_cell_index()]};
+    sum.D += term.diffusion(stab, *seen);
+  }
+  sum.active = sum.D.norm_square() != 0.;
+  return sum;
 }
 
 template <int dim> void Space<dim>::assemble_matrices(double t, double tau, SpatialMatrices &m) const
@@ -150,7 +151,7 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
     cm = 0.;
     ca = 0.;
     const double dK = delta(cell, tau);
-    const Crosswind cw = crosswind(cell);
+    const CellDiffusion cw = cell_diffusion(cell);
     for (unsigned int q = 0; q < quad.size(); ++q)
     {
       const auto c = weak_form::coefficients(scene, fv.quadrature_point(q), t);
@@ -169,7 +170,7 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
           cm(i, j) += phi_j * (phi_i + supg_i) * JxW;
           ca(i, j) += (weak_form::galerkin(c, phi_j, grad_j, phi_i, grad_i) +
                        strong_j * supg_i +
-                       weak_form::crosswind(cw.eps, cw.b, grad_j, grad_i)) *
+                       weak_form::cell_diffusion(cw.D, grad_j, grad_i)) *
                       JxW;
         }
       }

@@ -99,15 +99,18 @@ public:
     const double f = stab.supg_tau_factor;
     return f > 0 ? std::min(d, f * tau) : d;
   }
-  /// The crosswind diffusion of a cell: eps_cw,K (Stabilization::crosswind0; 0 if off)
-  /// and the direction b across which it acts (b at the centre at t = 0).
-  struct Crosswind
+  /// The artificial diffusion of the stabilization terms beside SUPG on a cell
+  /// (stabilization_terms.h): D_K summed over the active terms, and whether any term acts
+  /// on the cell (D_K != 0). Assembly and estimator alike take it from here.
+  struct CellDiffusion
   {
-    double eps = 0.;
-    dealii::Tensor<1, dim> b;
+    dealii::Tensor<2, dim> D;
+    bool active = false;
   };
-  Crosswind crosswind(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
-  /// A factor in [0, 1] on each active cell's crosswind diffusion, by active cell index
+  CellDiffusion
+  cell_diffusion(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
+  /// A factor s_K in [0, 1] on each active cell's stabilization terms
+  /// (StabilizationCell::switch_factor), by active cell index
   /// (Stabilization::crosswind_form = residual: crosswind_scale() of a previous
   /// solution). Empty: 1 on every cell. Set before the first assembly.
   void set_crosswind_scale(std::vector<double> scale) { cw_scale = std::move(scale); }

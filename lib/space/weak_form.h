@@ -2,9 +2,10 @@
 // The convection-diffusion-reaction + SUPG weak form, pointwise (doc/method.md §2-3).
 // Every integrand of the method is built from these terms: the spatial matrices and
 // loads (space.cc), the estimator's residuals and adjoint forms
-// (adaptivity/cell_functionals.cc, adaptivity/cell_matrices.cc). A new
-// stabilization term (crosswind diffusion, shock capturing) is added here and in the
-// places that call supg_test(), and nowhere else.
+// (adaptivity/cell_functionals.cc, adaptivity/cell_matrices.cc). A stabilization term
+// of the form (D_K grad u, grad v)_K (crosswind diffusion, isotropic shock capturing) is
+// an entry of stabilization_terms.cc and reaches every integrand through
+// cell_diffusion() below.
 //
 // With L u = -eps Lap u + b.grad u + alpha u the discrete scheme on a slab reads
 //   (d_t u, v + delta_K b.grad v) + a(u)(v) + sum_K delta_K (L u, b.grad v)_K
@@ -64,18 +65,15 @@ double supg_test(double delta, const dealii::Tensor<1, dim> &b,
   return delta * (b * grad_v);
 }
 
-/// The crosswind diffusion integrand eps_cw (P grad u, P grad v), P = I - b b^T / |b|^2
-/// the projection across b (0 where b = 0); the method takes b at the cell's centre at
-/// t = 0 (Space::crosswind), so that the term is one matrix per mesh. Not consistent:
-/// the scheme's error gains O(eps_cw) where it acts; the estimator counts it in S(u).
+/// The integrand (D grad u, grad v) of the stabilization terms beside SUPG
+/// (stabilization_terms.h; D = D_K of Space::cell_diffusion, constant on the cell). Not
+/// consistent: the scheme's error gains O(|D_K|) where a term acts; the estimator counts
+/// it in S(u).
 template <int dim>
-double crosswind(double eps_cw, const dealii::Tensor<1, dim> &b,
-                 const dealii::Tensor<1, dim> &grad_u, const dealii::Tensor<1, dim> &grad_v)
+double cell_diffusion(const dealii::Tensor<2, dim> &D, const dealii::Tensor<1, dim> &grad_u,
+                      const dealii::Tensor<1, dim> &grad_v)
 {
-  const double bb = b * b;
-  if (eps_cw == 0. || bb == 0.)
-    return 0.;
-  return eps_cw * (grad_u * grad_v - (b * grad_u) * (b * grad_v) / bb);
+  return grad_v * (D * grad_u);
 }
 
 /// The strong residual f - d_t u - L u.
