@@ -198,15 +198,14 @@ double max_aspect_ratio(const Triangulation<dim> &tria, const Mapping<dim> &mapp
     double cell_ar = 1;
     for (unsigned int q = 0; q < quad.size(); ++q)
     {
-      // singular values of J: square roots of the eigenvalues of J^T J
+      // singular values of J: square roots of the eigenvalues of G = J^T J, in closed
+      // form (deal.II's eigenvalues() asserts distinct ones, which a square cell has not)
+      static_assert(dim == 2, "the aspect ratio's closed form is 2D");
       const Tensor<2, dim> J = Tensor<2, dim>(fv.jacobian(q));
-      const auto ev = eigenvalues(symmetrize(transpose(J) * J));
-      double lo = 1e300, hi = 0;
-      for (double e : ev)
-      {
-        lo = std::min(lo, e);
-        hi = std::max(hi, e);
-      }
+      const Tensor<2, dim> G = transpose(J) * J;
+      const double mean = 0.5 * (G[0][0] + G[1][1]), half = 0.5 * (G[0][0] - G[1][1]);
+      const double d = std::sqrt(half * half + G[0][1] * G[0][1]);
+      const double hi = mean + d, lo = determinant(J) * determinant(J) / hi;
       cell_ar = std::max(cell_ar, std::sqrt(hi / lo));
     }
     if (per_cell)
