@@ -188,9 +188,10 @@ template <int dim>
 void SlabOperator<dim>::assemble_terms(double t_start, double tau_n, bool constant,
                                        bool same_tau)
 {
-  const unsigned int m = basis.n_dofs();
   terms_full.clear();
   terms_cond.clear();
+  FullMatrix<double> tM(basis.mass());
+  tM *= tau_n;
   if (constant)
   {
     // delta_K <= c tau_n: a new slab length needs new spatial matrices
@@ -200,88 +201,94 @@ void SlabOperator<dim>::assemble_terms(double t_start, double tau_n, bool consta
       mats.resize(1);
       space.assemble_matrices(0., tau_n, mats[0]);
     }
-    FullMatrix<double> tM(basis.mass());
-    tM *= tau_n;
     terms_full = {{basis.derivative_with_jump(), &mats[0].M}, {tM, &mats[0].A}};
     terms_cond = {{basis.derivative_with_jump(), &mats[0].Mc}, {tM, &mats[0].Ac}};
     jump_M = &mats[0].M;
     kron = {basis.derivative_with_jump(), tM, &mats[0].Mc, &mats[0].Ac};
+    return;
   }
-  else
+  // r+2 Gauss points integrate polynomial-in-t coefficients of degree <= 2 exactly.
+  const unsigned int m = basis.n_dofs();
+  TemporalFactors f;
+  gauss_rule(m + 1, f.points, f.weights);
+  for (unsigned int q = 0; q < f.points.size(); ++q)
   {
-    // r+2 Gauss points integrate polynomial-in-t coefficients of degree <= 2 exactly.
-    std::vector<double> sq, wq;
-    gauss_rule(m + 1, sq, wq);
-    std::vector<FullMatrix<double>> Tm(sq.size()), Ta(sq.size());
-    for (unsigned int q = 0; q < sq.size(); ++q)
-    {
-      std::vector<double> l = basis.values(sq[q]), dl(m);
-      for (unsigned int k = 0; k < m; ++k)
-        dl[k] = basis.derivative(k, sq[q]);
-      Tm[q] = outer(l, dl);
-      Ta[q] = outer(l, l);
-      Tm[q] *= wq[q];
-      Ta[q] *= wq[q] * tau_n;
-    }
-    const FullMatrix<double> Tj = outer(basis.left_trace(), basis.left_trace());
-    mats.resize(sq.size() + 1);
-    auto &mj = mats.back();
-    if (const auto *nodes = time_nodes(tau_n))
-    {
-      // The matrices at the quadrature points are combinations of the node matrices:
-      // K's terms are the node matrices, each with its share of the temporal factors,
-      // so that no quadrature point's matrices are formed.
-      std::vector<FullMatrix<double>> TM(nodes->size(), FullMatrix<double>(m, m)),
-          TA = TM;
-      for (unsigned int q = 0; q < sq.size(); ++q)
-      {
-        const std::vector<double> l = time_node_weights(t_start + sq[q] * tau_n);
-        for (unsigned int c = 0; c < nodes->size(); ++c)
-        {
-          TM[c].add(l[c], Tm[q]);
-          TA[c].add(l[c], Ta[q]);
-        }
-      }
-      const std::vector<double> lj = time_node_weights(t_start);
-      for (unsigned int c = 0; c < nodes->size(); ++c)
-      {
-        TM[c].add(lj[c], Tj);
-        terms_full.push_back({TM[c], &(*nodes)[c].M});
-        terms_full.push_back({TA[c], &(*nodes)[c].A});
-        terms_cond.push_back({TM[c], &(*nodes)[c].Mc});
-        terms_cond.push_back({TA[c], &(*nodes)[c].Ac});
-      }
-      matrices_at(t_start, tau_n, mj, true);
-      // the middle point's matrices only for a Kronecker preconditioner's split
-      if ((opt.type == SolverType::iterative || opt.type == SolverType::automatic) &&
-          is_kronecker(opt.iterative.preconditioner))
-        matrices_at(t_start + sq[sq.size() / 2] * tau_n, tau_n, mats[sq.size() / 2]);
-      else
-        mats[sq.size() / 2] = SpatialMatrices();
-    }
-    else
-    {
-      for (unsigned int q = 0; q < sq.size(); ++q)
-      {
-        matrices_at(t_start + sq[q] * tau_n, tau_n, mats[q]);
-        terms_full.push_back({Tm[q], &mats[q].M});
-        terms_full.push_back({Ta[q], &mats[q].A});
-        terms_cond.push_back({Tm[q], &mats[q].Mc});
-        terms_cond.push_back({Ta[q], &mats[q].Ac});
-      }
-      matrices_at(t_start, tau_n, mj);
-      terms_full.push_back({Tj, &mj.M});
-      terms_cond.push_back({Tj, &mj.Mc});
-    }
-    jump_M = &mj.M;
-    // Kronecker preconditioner: D (x) M + tau Mhat (x) A frozen at the middle Gauss point.
-    FullMatrix<double> tM(basis.mass());
-    tM *= tau_n;
-    const auto &mid = mats[sq.size() / 2];
-    kron = KronSplit();
-    if (!mid.Mc.empty())
-      kron = {basis.derivative_with_jump(), tM, &mid.Mc, &mid.Ac};
+    std::vector<double> l = basis.values(f.points[q]), dl(m);
+    for (unsigned int k = 0; k < m; ++k)
+      dl[k] = basis.derivative(k, f.points[q]);
+    f.Tm.push_back(outer(l, dl));
+    f.Ta.push_back(outer(l, l));
+    f.Tm[q] *= f.weights[q];
+    f.Ta[q] *= f.weights[q] * tau_n;
   }
+  f.Tj = outer(basis.left_trace(), basis.left_trace());
+  mats.resize(f.points.size() + 1);
+  const unsigned int mid = f.points.size() / 2;
+  if (const auto *nodes = time_nodes(tau_n))
+    add_node_terms(*nodes, f, t_start, tau_n);
+  else
+    add_quadrature_terms(f, t_start, tau_n);
+  jump_M = &mats.back().M;
+  // Kronecker preconditioner: D (x) M + tau Mhat (x) A frozen at the middle Gauss point.
+  kron = KronSplit();
+  if (!mats[mid].Mc.empty())
+    kron = {basis.derivative_with_jump(), tM, &mats[mid].Mc, &mats[mid].Ac};
+}
+
+template <int dim>
+void SlabOperator<dim>::add_node_terms(const std::vector<SpatialMatrices> &nodes,
+                                       const TemporalFactors &f, double t_start,
+                                       double tau_n)
+{
+  // The matrices at the quadrature points are combinations of the node matrices: K's
+  // terms are the node matrices, each with its share of the temporal factors, so that no
+  // quadrature point's matrices are formed.
+  const unsigned int m = basis.n_dofs(), nq = f.points.size();
+  std::vector<FullMatrix<double>> TM(nodes.size(), FullMatrix<double>(m, m)), TA = TM;
+  for (unsigned int q = 0; q < nq; ++q)
+  {
+    const std::vector<double> l = time_node_weights(t_start + f.points[q] * tau_n);
+    for (unsigned int c = 0; c < nodes.size(); ++c)
+    {
+      TM[c].add(l[c], f.Tm[q]);
+      TA[c].add(l[c], f.Ta[q]);
+    }
+  }
+  const std::vector<double> lj = time_node_weights(t_start);
+  for (unsigned int c = 0; c < nodes.size(); ++c)
+  {
+    TM[c].add(lj[c], f.Tj);
+    terms_full.push_back({TM[c], &nodes[c].M});
+    terms_full.push_back({TA[c], &nodes[c].A});
+    terms_cond.push_back({TM[c], &nodes[c].Mc});
+    terms_cond.push_back({TA[c], &nodes[c].Ac});
+  }
+  matrices_at(t_start, tau_n, mats.back(), true);
+  // the quadrature points' matrices are not needed; the middle point's only for a
+  // Kronecker preconditioner's split
+  for (unsigned int q = 0; q < nq; ++q)
+    mats[q] = SpatialMatrices();
+  if ((opt.type == SolverType::iterative || opt.type == SolverType::automatic) &&
+      is_kronecker(opt.iterative.preconditioner))
+    matrices_at(t_start + f.points[nq / 2] * tau_n, tau_n, mats[nq / 2]);
+}
+
+template <int dim>
+void SlabOperator<dim>::add_quadrature_terms(const TemporalFactors &f, double t_start,
+                                             double tau_n)
+{
+  for (unsigned int q = 0; q < f.points.size(); ++q)
+  {
+    matrices_at(t_start + f.points[q] * tau_n, tau_n, mats[q]);
+    terms_full.push_back({f.Tm[q], &mats[q].M});
+    terms_full.push_back({f.Ta[q], &mats[q].A});
+    terms_cond.push_back({f.Tm[q], &mats[q].Mc});
+    terms_cond.push_back({f.Ta[q], &mats[q].Ac});
+  }
+  auto &mj = mats.back();
+  matrices_at(t_start, tau_n, mj);
+  terms_full.push_back({f.Tj, &mj.M});
+  terms_cond.push_back({f.Tj, &mj.Mc});
 }
 
 template <int dim>

@@ -179,6 +179,20 @@ private:
   /// The Kronecker terms of K_n (full and condensed), the jump mass and the split for
   /// the Kronecker preconditioners; assembles the spatial matrices they need.
   void assemble_terms(double t_start, double tau_n, bool constant, bool same_tau);
+  /// The temporal factors of K's terms on a slab of length tau_n, for coefficients that
+  /// depend on time: per Gauss point q of the slab (points in [0, 1], weights) Tm_q =
+  /// w_q l(s_q) l'(s_q)^T and Ta_q = w_q tau_n l(s_q) l(s_q)^T, and the jump's Tj.
+  struct TemporalFactors
+  {
+    std::vector<double> points, weights;
+    std::vector<dealii::FullMatrix<double>> Tm, Ta;
+    dealii::FullMatrix<double> Tj;
+  };
+  /// assemble_terms' terms from the node matrices of the interpolation in time.
+  void add_node_terms(const std::vector<SpatialMatrices> &nodes, const TemporalFactors &f,
+                      double t_start, double tau_n);
+  /// assemble_terms' terms from the spatial matrices at each Gauss point.
+  void add_quadrature_terms(const TemporalFactors &f, double t_start, double tau_n);
   /// Frees the condensed spatial matrices (constant coefficients: mats[0]); the next
   /// assemble_terms assembles them again.
   void release_condensed();
