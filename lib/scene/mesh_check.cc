@@ -331,24 +331,30 @@ void skip_entities(MshReader &r)
 }
 } // namespace
 
-void check_msh_file(std::istream &in, const std::string &prefix)
+namespace
 {
-  MshReader r(in, prefix);
+/// $MeshFormat: whether the file is ASCII (false: binary, which deal.II refuses itself)
+/// and of format 4.1 (`v4`), else 2.x.
+bool read_format(MshReader &r, bool &v4)
+{
   if (!r.seek("$MeshFormat"))
     r.fail("no $MeshFormat section (deal.II reads Gmsh's ASCII format 2.2 or 4.1)");
   const double version = r.real("$MeshFormat: the version");
   const long long binary = r.integer("$MeshFormat: the file type", 0, 1);
   if (binary != 0)
-    return; // deal.II refuses binary files itself
+    return false;
   if (!(version >= 2 && version < 3) && version != 4.1)
     r.fail("format version " + std::to_string(version) +
            "; deal.II reads Gmsh's ASCII format 2.2 or 4.1");
   r.integer("$MeshFormat: the data size", 1, 16);
   r.end("MeshFormat");
-  const bool v4 = version > 3;
-  if (v4)
-    skip_entities(r);
+  v4 = version > 3;
+  return true;
+}
 
+/// $Nodes: the node tags, each defined once.
+std::set<long long> read_nodes(MshReader &r, bool v4, const std::string &prefix)
+{
   std::set<long long> tags;
   auto add = [&](long long tag)
   {
@@ -370,7 +376,6 @@ void check_msh_file(std::istream &in, const std::string &prefix)
     }
   }
   else
-  {
     r.each_block("Nodes", "the parametric flag", 1,
                  [&](const std::string &what, long long parametric, long long dim,
                      long long count)
@@ -381,9 +386,13 @@ void check_msh_file(std::istream &in, const std::string &prefix)
                      for (long long k = 0; k < 3 + (parametric ? dim : 0); ++k)
                        r.real(what + ", a coordinate");
                  });
-  }
   r.end("Nodes");
+  return tags;
+}
 
+/// $Elements: known types, each node one of `tags`.
+void read_elements(MshReader &r, bool v4, const std::set<long long> &tags)
+{
   if (!r.seek("$Elements"))
     r.fail("no $Elements section");
   auto element = [&](const std::string &what, long long type)
@@ -415,7 +424,6 @@ void check_msh_file(std::istream &in, const std::string &prefix)
     }
   }
   else
-  {
     r.each_block("Elements", "the type", 200,
                  [&](const std::string &what, long long type, long long, long long count)
                  {
@@ -425,8 +433,20 @@ void check_msh_file(std::istream &in, const std::string &prefix)
                      element(what, type);
                    }
                  });
-  }
   r.end("Elements");
+}
+} // namespace
+
+void check_msh_file(std::istream &in, const std::string &prefix)
+{
+  MshReader r(in, prefix);
+  bool v4 = false;
+  if (!read_format(r, v4))
+    return; // deal.II refuses binary files itself
+  if (v4)
+    skip_entities(r);
+  const std::set<long long> tags = read_nodes(r, v4, prefix);
+  read_elements(r, v4, tags);
 }
 
 void check_repetitions(const std::string &name, const std::string &arguments,
