@@ -68,7 +68,7 @@ std::vector<GoalSpec> goals()
     }
   GoalSpec c;
   c.name = "dirac_I";
-  c.center = {0.3, 0.3};
+  c.location = {0.3, 0.3};
   c.over_time = true;
   out.push_back(c);
   return out;
@@ -86,7 +86,7 @@ TEST(Mollifier, IntegratesToOne)
       Space<2> space(*scene, tria, p, Stabilization{0., SupgLength::volume, 0.});
       space.setup();
       GoalSpec g;
-      g.center = {0.45, 0.5};
+      g.location = {0.45, 0.5};
       g.radius = s;
       Vector<double> j;
       assemble_goal_vector(space, g, j);
@@ -114,7 +114,7 @@ double mollified_linear_error(const std::array<unsigned int, 2> &cells, unsigned
   Space<2> space(*scene, tria, p, Stabilization{0., SupgLength::volume, 0.});
   space.setup();
   GoalSpec g;
-  g.center = {c[0], c[1]};
+  g.location = {c[0], c[1]};
   g.radius = s;
   Vector<double> j, fh(space.n_dofs());
   assemble_goal_vector(space, g, j);

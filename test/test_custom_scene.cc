@@ -75,7 +75,7 @@ TEST(CustomScene, ReproducesTheMovingHumpsData)
   for (std::size_t g = 0; g < a.size(); ++g)
   {
     EXPECT_EQ(a[g].name, b[g].name);
-    EXPECT_EQ(a[g].center, b[g].center);
+    EXPECT_EQ(a[g].location, b[g].location);
     EXPECT_EQ(a[g].radius, b[g].radius);
     EXPECT_EQ(a[g].over_time, b[g].over_time);
   }

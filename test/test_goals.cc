@@ -34,7 +34,7 @@ GoalSpec flux_over_boundary()
   g.name = "flux";
   g.kind = "flux";
   g.over_time = true;
-  g.boundary_ids = {0};
+  g.location = {0}; // boundary id 0
   return g;
 }
 

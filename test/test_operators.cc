@@ -391,7 +391,7 @@ TEST(ExactGoal, MovingHumpToTenDigits)
     // independent: a fine tensor Gauss rule over the mollifier's square support,
     // 16-point Gauss on 200 x 200 sub-squares
     const QIterated<1> q(QGauss<1>(16), 200);
-    const Point<2> c(g.center[0], g.center[1]);
+    const Point<2> c(g.location[0], g.location[1]);
     const double s = g.radius, C = mollifier_constant(2, s);
     double ref = 0;
     for (unsigned int i = 0; i < q.size(); ++i)

@@ -29,6 +29,11 @@ using namespace dealii;
 
 namespace
 {
+/// The boundary ids of a flux goal's Gamma (GoalSpec::location).
+std::vector<unsigned int> boundary_ids(const GoalSpec &g)
+{
+  return std::vector<unsigned int>(g.location.begin(), g.location.end());
+}
 using Cell = Triangulation<2>::active_cell_iterator;
 
 /// The values of psi at the vertices of `tria`: 1 on the boundary faces with an id of
@@ -122,7 +127,7 @@ public:
   FluxPart(const GoalSpec &g, const Scene<2> &scene, const Mapping<2> &mapping,
            const FiniteElement<2> &fe, const Triangulation<2> &tria, bool stiffness)
       : scene(scene), stiffness(stiffness), q(fe.degree + 2),
-        extension(tria, g.boundary_ids, mapping, q),
+        extension(tria, boundary_ids(g), mapping, q),
         values(mapping, fe, q,
                update_values | update_gradients | update_quadrature_points |
                    update_JxW_values)
@@ -176,7 +181,7 @@ public:
     std::string dirichlet;
     for (const auto id : scene.dirichlet_ids)
       dirichlet += (dirichlet.empty() ? "" : ", ") + std::to_string(id);
-    g.boundary_ids.clear();
+    g.location.clear();
     for (const double x : v)
     {
       // the rule of scene.dirichlet and scene.neumann: any id of deal.II's range
@@ -191,7 +196,7 @@ public:
                               : " is not a boundary of the domain") +
                          "; expected Dirichlet ids of scene '" + scene.name() + "' (" +
                          dirichlet + ")");
-      g.boundary_ids.push_back(id);
+      g.location.push_back(id);
     }
     if (!g.over_time)
       throw InputError(bad + "a flux goal is integrated over I; set goal.over_time = "
@@ -221,7 +226,8 @@ public:
     const auto *u = scene.exact();
     Triangulation<2> coarse;
     scene.make_coarse_grid(coarse);
-    const std::set<unsigned int> gamma(g.boundary_ids.begin(), g.boundary_ids.end());
+    const std::vector<unsigned int> ids = boundary_ids(g);
+    const std::set<unsigned int> gamma(ids.begin(), ids.end());
     double J = 0;
     for (const auto &cell : coarse.active_cell_iterators())
       for (unsigned int f = 0; f < GeometryInfo<2>::faces_per_cell; ++f)
@@ -263,7 +269,7 @@ double FluxGoal::offset(const Space<2> &space, const GoalSpec &g) const
   const QGauss<1> qf(space.degree() + 3);
   const QIterated<1> qt(QGauss<1>(8), 16);
   const auto &tria = space.dof_handler().get_triangulation();
-  Extension extension(tria, g.boundary_ids, space.mapping(), q);
+  Extension extension(tria, boundary_ids(g), space.mapping(), q);
   FEValues<2> values(space.mapping(), space.finite_element(), q,
                      update_quadrature_points | update_JxW_values);
   const double T = scene.end_time;

@@ -6,7 +6,6 @@
 #include "goal/goal.h"
 #include "space/space.h"
 
-#include <deal.II/grid/grid_tools.h>
 
 #include <cmath>
 #include <numeric>
@@ -226,23 +225,6 @@ std::vector<GoalSpec> make_goals(const GoalInput &in, const Scene<2> &scene)
   return goals;
 }
 
-namespace
-{
-/// Whether p lies in a cell of the space's mesh (through its mapping).
-bool inside(const Space<2> &space, const Point<2> &p)
-{
-  try
-  {
-    const auto found = GridTools::find_active_cell_around_point(
-        space.mapping(), space.dof_handler().get_triangulation(), p);
-    return found.first.state() == IteratorState::valid;
-  }
-  catch (...)
-  {
-    return false;
-  }
-}
-} // namespace
 
 double goal_of_one(const Space<2> &space, const GoalSpec &goal)
 {
@@ -266,19 +248,6 @@ void check_goal_weights(const Space<2> &space, const std::vector<GoalSpec> &goal
     const GoalSpec g = unweighted(goal);
     double w = 0;
     const bool resolved = goal_weight_resolved(space, g, scene, w);
-    if (!resolved && g.center.size() == 2 &&
-        !inside(space, Point<2>(g.center[0], g.center[1])))
-    {
-      const bool custom = scene.name() == "custom" && in.kind == "scene";
-      throw InputError(
-          in.locations_source + (custom ? ": key 'scene.goals'" : ": key 'goal.locations'") +
-          ": goal " + g.name + " is centred at (" + six_digits(g.center[0]) + ", " +
-          six_digits(g.center[1]) + "), outside the domain " + scene.domain_text() +
-          " (in a hole or beyond its boundary); expected a centre inside the domain" +
-          (custom ? " (without scene.goals the goal sits at the centre of the domain's "
-                    "bounding box)"
-                  : ""));
-    }
     if (!resolved)
       throw InputError(goal_type(g.kind).unresolved(
           space, g, in, scene,

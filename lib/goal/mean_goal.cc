@@ -10,6 +10,15 @@ using namespace dealii;
 
 namespace
 {
+/// A corner of a mean goal's rectangle (GoalSpec::location: x0, y0, x1, y1): 0 the
+/// lower left, 1 the upper right.
+Point<2> corner(const GoalSpec &g, unsigned int which)
+{
+  if (g.location.size() != 4)
+    throw InputError("goal '" + g.name + "': expected x0,y0,x1,y1, got " +
+                     std::to_string(g.location.size()) + " numbers");
+  return Point<2>(g.location[2 * which], g.location[2 * which + 1]);
+}
 using Cell = Triangulation<2>::active_cell_iterator;
 
 class MeanPart : public DensityGoalPart<2>
@@ -18,10 +27,8 @@ public:
   MeanPart(const GoalSpec &g, const Mapping<2> &mapping, const FiniteElement<2> &fe)
       : DensityGoalPart<2>(mapping, fe)
   {
-    if (g.lower.size() != 2 || g.upper.size() != 2)
-      throw InputError("goal '" + g.name + "': expected 2 coordinates per corner");
-    lo = Point<2>(g.lower[0], g.lower[1]);
-    hi = Point<2>(g.upper[0], g.upper[1]);
+    lo = corner(g, 0);
+    hi = corner(g, 1);
     for (unsigned int d = 0; d < 2; ++d)
       area *= hi[d] - lo[d];
     if (!(area > 0))
@@ -124,8 +131,7 @@ public:
   void set_location(const std::vector<double> &v, const Scene<2> &scene,
                     const std::string &bad, GoalSpec &g) const override
   {
-    g.lower = {v[0], v[1]};
-    g.upper = {v[2], v[3]};
+    g.location = v;
     if (!(v[2] > v[0] && v[3] > v[1]))
       throw InputError(bad + "expected x0,y0,x1,y1 with x1 > x0, y1 > y0");
     if (!scene.contains_box(Point<2>(v[0], v[1]), Point<2>(v[2], v[3])))
@@ -147,7 +153,7 @@ public:
   {
     const auto *u = scene.exact();
     const auto box = scene.bounding_box();
-    const Point<2> lo(g.lower[0], g.lower[1]), hi(g.upper[0], g.upper[1]);
+    const Point<2> lo = corner(g, 0), hi = corner(g, 1);
     const double area = (hi[0] - lo[0]) * (hi[1] - lo[1]);
     return n.outer(
                [&](double x)
@@ -172,9 +178,9 @@ public:
   {
     GoalSpec g = goal;
     double w = 0;
-    const double cx = 0.5 * (g.lower[0] + g.upper[0]),
-                 cy = 0.5 * (g.lower[1] + g.upper[1]);
-    double hx = 0.5 * (g.upper[0] - g.lower[0]), hy = 0.5 * (g.upper[1] - g.lower[1]);
+    const Point<2> lo = corner(g, 0), hi = corner(g, 1);
+    const double cx = 0.5 * (lo[0] + hi[0]), cy = 0.5 * (lo[1] + hi[1]);
+    double hx = 0.5 * (hi[0] - lo[0]), hy = 0.5 * (hi[1] - lo[1]);
     std::string smallest = "none of the larger rectangles about its centre (in steps of "
                            "2) inside the domain is accepted there; refine the initial "
                            "mesh (discretization.initial_refinements)";
@@ -189,8 +195,7 @@ public:
          scene.contains_box(Point<2>(cx - hx, cy - hy), Point<2>(cx + hx, cy + hy));
          grow())
     {
-      g.lower = {cx - hx, cy - hy};
-      g.upper = {cx + hx, cy + hy};
+      g.location = {cx - hx, cy - hy, cx + hx, cy + hy};
       if (goal_weight_resolved(space, g, scene, w))
       {
         smallest = "the smallest one about its centre (in steps of 2) accepted there is " +

@@ -42,6 +42,30 @@ namespace
 {
 using Cell = Triangulation<2>::active_cell_iterator;
 
+/// The centre of a point goal (GoalSpec::location: x, y).
+Point<2> center(const GoalSpec &g)
+{
+  if (g.location.size() != 2)
+    throw InputError("goal '" + g.name + "': expected 2 coordinates, got " +
+                     std::to_string(g.location.size()));
+  return Point<2>(g.location[0], g.location[1]);
+}
+
+/// Whether p lies in a cell of the space's mesh (through its mapping).
+bool inside(const Space<2> &space, const Point<2> &p)
+{
+  try
+  {
+    const auto found = GridTools::find_active_cell_around_point(
+        space.mapping(), space.dof_handler().get_triangulation(), p);
+    return found.first.state() == IteratorState::valid;
+  }
+  catch (...)
+  {
+    return false;
+  }
+}
+
 /// s = 0: the shape functions at the point, on the cell that holds it.
 class DiracPart : public GoalPart<2>
 {
@@ -51,7 +75,7 @@ public:
       : fe(fe)
   {
     const auto found = GridTools::find_active_cell_around_point(
-        mapping, tria, Point<2>(g.center[0], g.center[1]));
+        mapping, tria, center(g));
     cell = found.first;
     unit = found.second;
   }
@@ -75,7 +99,7 @@ class MollifierPart : public DensityGoalPart<2>
 {
 public:
   MollifierPart(const GoalSpec &g, const Mapping<2> &mapping, const FiniteElement<2> &fe)
-      : DensityGoalPart<2>(mapping, fe), c(g.center[0], g.center[1]), s(g.radius),
+      : DensityGoalPart<2>(mapping, fe), c(center(g)), s(g.radius),
         C(mollifier_constant(2, s))
   {
   }
@@ -193,7 +217,7 @@ public:
   void set_location(const std::vector<double> &v, const Scene<2> &scene,
                     const std::string &bad, GoalSpec &g) const override
   {
-    g.center = v;
+    g.location = v;
     if (!scene.contains(Point<2>(v[0], v[1])))
       throw InputError(bad + "it lies outside the domain " + scene.domain_text() +
                        " of scene '" + scene.name() + "'");
@@ -205,9 +229,7 @@ public:
   {
     if (g.over_time != over_time)
       return nullptr;
-    if (g.center.size() != 2)
-      throw InputError("goal '" + g.name + "': expected 2 coordinates, got " +
-                       std::to_string(g.center.size()));
+    center(g); // 2 coordinates
     if (g.radius == 0.)
       return std::make_unique<DiracPart>(g, mapping, fe, tria);
     return std::make_unique<MollifierPart>(g, mapping, fe);
@@ -217,7 +239,7 @@ public:
                      nested::NestedIntegrals &n) const override
   {
     const auto *u = scene.exact();
-    const Point<2> c(g.center[0], g.center[1]);
+    const Point<2> c = center(g);
     if (g.radius == 0.)
       return u->value(c, t);
     const auto box = scene.bounding_box();
@@ -244,8 +266,8 @@ public:
   {
     constexpr double tolerance = 1e-6;
     const double s = g.radius;
-    if (s > 0 && !scene.contains_box(Point<2>(g.center[0] - s, g.center[1] - s),
-                                     Point<2>(g.center[0] + s, g.center[1] + s)))
+    const Point<2> c = center(g);
+    if (s > 0 && !scene.contains_box(Point<2>(c[0] - s, c[1] - s), Point<2>(c[0] + s, c[1] + s)))
       return w > 0 && w <= 1 + tolerance;
     return std::abs(w - 1.) <= tolerance;
   }
@@ -254,6 +276,19 @@ public:
                          const Scene<2> &scene,
                          const std::string &integrates) const override
   {
+    const Point<2> c = center(goal);
+    if (!inside(space, c))
+    {
+      const bool custom = scene.name() == "custom" && in.kind == "scene";
+      return in.locations_source +
+             (custom ? ": key 'scene.goals'" : ": key 'goal.locations'") + ": goal " +
+             goal.name + " is centred at (" + six_digits(c[0]) + ", " + six_digits(c[1]) +
+             "), outside the domain " + scene.domain_text() +
+             " (in a hole or beyond its boundary); expected a centre inside the domain" +
+             (custom ? " (without scene.goals the goal sits at the centre of the domain's "
+                       "bounding box)"
+                     : "");
+    }
     const auto box = scene.bounding_box();
     const double diameter = box[0].distance(box[1]);
     // the smallest radius accepted: the goal grown by factors of 2

@@ -473,8 +473,8 @@ std::vector<GoalSpec> CustomScene::default_goals(double radius) const
 {
   GoalSpec g;
   g.name = "u_center_T";
-  g.center = {0.5 * (geometry->box[0][0] + geometry->box[1][0]),
-              0.5 * (geometry->box[0][1] + geometry->box[1][1])};
+  g.location = {0.5 * (geometry->box[0][0] + geometry->box[1][0]),
+                0.5 * (geometry->box[0][1] + geometry->box[1][1])};
   g.radius = radius;
   return {g};
 }

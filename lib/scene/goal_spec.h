@@ -14,10 +14,11 @@ struct GoalSpec
   std::string name;
   std::string kind = "point"; ///< the name of its GoalType (goal/goal_type.h)
   bool over_time = false; ///< true: int_I j(u(t)) dt; false: j(u(T))
-  std::vector<double> center;       ///< point goals
-  double radius = 0;                ///< mollifier radius s
-  std::vector<double> lower, upper; ///< mean goals: the rectangle
-  std::vector<unsigned int> boundary_ids; ///< flux goals: the boundary Gamma
+  /// Where the goal is, as the numbers of one location of its kind (GoalType::syntax;
+  /// the kind's file in goal/ reads them): a point goal's centre x, y; a mean goal's
+  /// rectangle x0, y0, x1, y1; a flux goal's boundary ids.
+  std::vector<double> location;
+  double radius = 0; ///< mollifier radius s (kinds with GoalType::has_radius)
   double weight = 1;
   /// goal.reference: the goal's reference value and its uncertainty (NaN: none given;
   /// uncertainty 0 where the value was given without one)

@@ -65,7 +65,7 @@ template <int dim> std::vector<GoalSpec> Scene<dim>::default_goals(double radius
 {
   GoalSpec g;
   g.name = "u_center_T";
-  g.center.assign(dim, 0.5);
+  g.location.assign(dim, 0.5);
   g.radius = radius;
   return {g};
 }

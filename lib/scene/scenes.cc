@@ -248,9 +248,9 @@ std::vector<GoalSpec> MovingHump::default_goals(double radius) const
   const double d = 0.25 / std::sqrt(2.);
   GoalSpec g1, g2;
   g1.name = "u_xe1_T";
-  g1.center = {0.5 - d, 0.5 - d};
+  g1.location = {0.5 - d, 0.5 - d};
   g2.name = "u_xe2_T";
-  g2.center = {0.5 + d, 0.5 + d};
+  g2.location = {0.5 + d, 0.5 + d};
   g1.radius = g2.radius = radius;
   return {g1, g2};
 }
@@ -272,8 +272,7 @@ std::vector<GoalSpec> BoundaryLayer::default_goals(double) const
   GoalSpec g;
   g.name = "mean_T";
   g.kind = "mean";
-  g.lower = {0.5, 0.};
-  g.upper = {1., 1.};
+  g.location = {0.5, 0., 1., 1.}; // x0, y0, x1, y1
   return {g};
 }
 
@@ -387,9 +386,9 @@ std::vector<GoalSpec> Hemker::default_goals(double radius) const
   const double a = 1. / std::sqrt(2.);
   GoalSpec g1, g2;
   g1.name = "u_xe1_I";
-  g1.center = {4., 1.};
+  g1.location = {4., 1.};
   g2.name = "u_xe2_I";
-  g2.center = {-a - 1e-6, a + 1e-6};
+  g2.location = {-a - 1e-6, a + 1e-6};
   for (GoalSpec *g : {&g1, &g2})
   {
     g->radius = radius;
