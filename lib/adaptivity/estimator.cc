@@ -59,10 +59,11 @@ private:
   /// the primal half 1/2 rho(u)(z - R_i z).
   double directional_indicator(unsigned int i, unsigned int n, double tau, bool last,
                                double &lift_size, double &half_rho, Indicators<dim> &ind);
-  /// ez = E z - z (outside value z(t_n^+)), eu = E u - u (outside value u(t_{n-1}^-)).
+  /// recon_error_z = E z - z (outside value z(t_n^+)), recon_error_u = E u - u (outside
+  /// value u(t_{n-1}^-)).
   void reconstruction_errors(double tau);
-  /// eu = u_r+1 - u (values and derivatives at the Gauss points, the jump at t_{n-1});
-  /// returns J_T(u_r+1(T) - u(T)) on the last slab, else 0.
+  /// recon_error_u = u_r+1 - u (values and derivatives at the Gauss points, the jump at
+  /// t_{n-1}); returns J_T(u_r+1(T) - u(T)) on the last slab, else 0.
   double higher_order_errors(unsigned int n, double tau, bool last);
 
   const Space<dim> &primal, &adjoint;
@@ -97,19 +98,26 @@ private:
   std::vector<Vector<double>> u_hi_nodes;
   Vector<double> e_prev;
   std::vector<types::global_dof_index> idx_q;
-  SlabFunctional rho, supg, A_rh, S_rh, A_z, Jf;
+  /// the slab's functionals on the cell: rho(u)(.) and S(u)(.) of u_h; A'(.)(R_h z) and
+  /// S'(.)(R_h z), A'(.)(z) (the adjoint residual's forms); J'(.) over I
+  SlabFunctional rho_u, supg_u, adjoint_form_Rhz, supg_derivative_Rhz, adjoint_form_z,
+      goal_derivative;
   std::array<SlabFunctional, dim> data; // the Dirichlet data's share, per direction
   /// W-local z, u and I_2h,i u - u at the temporal nodes of the slab
   std::vector<Vector<double>> z_nodes, u_nodes, lift_nodes;
   /// z's nodal vectors of slab n+1 (gathered for z(t_n^+), reused by slab n+1) and
-  /// each direction's I_2h,i u - u at the last node of slab n (v(t_n^-) of slab n+1)
-  std::vector<Vector<double>> z_nodes_next, v_last;
+  /// each direction's I_2h,i u - u at the last node of slab n (lift_error(t_n^-) of slab
+  /// n+1)
+  std::vector<Vector<double>> z_nodes_next, lift_error_last;
   std::vector<Vector<double>> Rz_nodes; // R_h or R_i applied to z_nodes
   /// z(t_n^+), u(t_{n-1}^-); scratch vectors (work_T: a value at the slab's end)
   Vector<double> z_next, u_prev, tmp, work_T, work_z, work_u;
-  SlabFunction z, u, Rhz, Riz, dz, v, ez, eu;
+  /// z and u on the slab; R_h z, R_i z and z - R z (R_h or R_i); I_2h,i u - u (the
+  /// lift's error); E z - z and E u - u (the temporal reconstruction's errors)
+  SlabFunction z, u, Rh_z, Ri_z, z_minus_Rz, lift_error, recon_error_z, recon_error_u;
   std::vector<LocalMap> lift;
-  Vector<double> jt, jT;
+  /// the cell's goal vectors: the part over I and the part at T
+  Vector<double> goal_vector_I, goal_vector_T;
 };
 
 template <int dim>
@@ -123,15 +131,19 @@ IndicatorAssembly<dim>::IndicatorAssembly(
       time_indicator(time_indicator), hi(hi), space_indicator(space_indicator),
       tria(primal.dof_handler().get_triangulation()),
       ops(primal.dof_handler(), weight_degree(primal, adjoint)),
-      fe_w(ops.weight_element()), from_primal(ops.interpolation_from(primal.finite_element())),
-      from_adjoint(ops.interpolation_from(adjoint.finite_element())), kernel(primal, fe_w, basis),
-      recon(basis), goal_t(primal.scene, primal.mapping(), fe_w, tria, goals, true),
+      fe_w(ops.weight_element()),
+      from_primal(ops.interpolation_from(primal.finite_element())),
+      from_adjoint(ops.interpolation_from(adjoint.finite_element())),
+      kernel(primal, fe_w, basis), recon(basis),
+      goal_t(primal.scene, primal.mapping(), fe_w, tria, goals, true),
       goal_T(primal.scene, primal.mapping(), fe_w, tria, goals, false), N(mesh.n_slabs()),
       n_nodes(basis.n_dofs()), n_w(fe_w.n_dofs_per_cell()), zT(zT), u0(u0),
-      recon_z(kernel.n_points()), recon_u(kernel.n_points()), n_nodes_hi(hi ? hi->basis.n_dofs() : 0),
-      u_hi_nodes(n_nodes_hi), e_prev(n_w), idx_q(adjoint.finite_element().n_dofs_per_cell()), z_nodes(n_nodes),
-      u_nodes(n_nodes), lift_nodes(n_nodes), z_nodes_next(n_nodes), v_last(dim), Rz_nodes(n_nodes), z_next(n_w), u_prev(n_w), tmp(n_w),
-      work_T(n_w), work_z(n_w), work_u(n_w), lift(dim)
+      recon_z(kernel.n_points()), recon_u(kernel.n_points()),
+      n_nodes_hi(hi ? hi->basis.n_dofs() : 0), u_hi_nodes(n_nodes_hi), e_prev(n_w),
+      idx_q(adjoint.finite_element().n_dofs_per_cell()), z_nodes(n_nodes),
+      u_nodes(n_nodes), lift_nodes(n_nodes), z_nodes_next(n_nodes), lift_error_last(dim),
+      Rz_nodes(n_nodes), z_next(n_w), u_prev(n_w), tmp(n_w), work_T(n_w), work_z(n_w),
+      work_u(n_w), lift(dim)
 {
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
     for (unsigned int d = 0; d < 2; ++d)
@@ -161,9 +173,9 @@ void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell, Indicators<dim>
   for (unsigned int i = 0; i < dim; ++i)
     lift[i] = ops.directional_lift(cell, i);
   if (!goal_t.empty())
-    goal_t.cell_vector(cell, jt);
+    goal_t.cell_vector(cell, goal_vector_I);
   if (!goal_T.empty())
-    goal_T.cell_vector(cell, jT);
+    goal_T.cell_vector(cell, goal_vector_T);
   const auto c = cell->active_cell_index();
   double supg_part = 0;                // S(u)(R_h z) on this cell
   std::array<double, dim> lift_size{}; // ||I_2h,i u - u||^2 over the slabs
@@ -195,24 +207,24 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
                                       std::array<double, dim> &lift_size)
 {
   const double t0 = mesh.start(n), tau = mesh.tau(n);
-  kernel.primal_functionals(t0, tau, U[n], n ? &U[n - 1] : nullptr, rho, supg);
+  kernel.primal_functionals(t0, tau, U[n], n ? &U[n - 1] : nullptr, rho_u, supg_u);
   gather_slab(n);
 
   slab_function(kernel, basis, tau, z_nodes, z);
   // R_h z, from R_h applied to z's nodal vectors (R_h acts in space only)
   for (unsigned int k = 0; k < n_nodes; ++k)
     sv::vmult(Rz_nodes[k], ops.restriction(dim), z_nodes[k]);
-  slab_function(kernel, basis, tau, Rz_nodes, Rhz);
-  kernel.adjoint_functional(t0, tau, Rz_nodes, Rhz, false, A_rh);
-  kernel.adjoint_functional(t0, tau, Rz_nodes, Rhz, true, S_rh);
-  kernel.adjoint_functional(t0, tau, z_nodes, z, false, A_z);
-  kernel.goal_functional(tau, jt, Jf);
+  slab_function(kernel, basis, tau, Rz_nodes, Rh_z);
+  kernel.adjoint_functional(t0, tau, Rz_nodes, Rh_z, false, adjoint_form_Rhz);
+  kernel.adjoint_functional(t0, tau, Rz_nodes, Rh_z, true, supg_derivative_Rhz);
+  kernel.adjoint_functional(t0, tau, z_nodes, z, false, adjoint_form_z);
+  kernel.goal_functional(tau, goal_vector_I, goal_derivative);
   const bool last = n + 1 == N;
   slab_function(kernel, basis, tau, u_nodes, u);
   // S(u)(R_h z): with z_h = R_h z in the primal space, J(e) = rho(u)(z - z_h) +
   // S(u)(z_h) and J(e) = rho*(z_h)(u - u_h) + S(u)(z_h) hold exactly, so the
   // average of the two carries the full SUPG consistency term.
-  supg_part += apply(supg, Rhz, false);
+  supg_part += apply(supg_u, Rh_z, false);
 
   double split = 0; // sum_i rho(u)(z - R_i z)
   for (unsigned int i = 0; i < dim; ++i)
@@ -224,8 +236,8 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
     ind.eta_h[i] += eta;
     split += 2 * half_rho;
   }
-  difference(z, Rhz, dz);
-  ind.eta_h_split_rest += split - apply(rho, dz, false);
+  difference(z, Rh_z, z_minus_Rz);
+  ind.eta_h_split_rest += split - apply(rho_u, z_minus_Rz, false);
   // the Dirichlet data's share, weighted by z itself (u_h interpolates g on Gamma_D)
   if (kernel.dirichlet_data_functionals(t0, tau, U[n], data))
     for (unsigned int i = 0; i < dim; ++i)
@@ -239,9 +251,10 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   reconstruction_errors(tau);
   // J_T(E u - u) at T: 0 for the Radau reconstruction (E u - u vanishes at t_n)
   const double end_part = hi ? higher_order_errors(n, tau, last) : 0.;
-  const double jv = apply(Jf, eu, false) + end_part; // J'(E u - u) over I and at T
-  const double half_rho = 0.5 * apply(rho, ez, false),
-               half_rhostar = 0.5 * (jv - apply(A_z, eu, true));
+  const double jv = apply(goal_derivative, recon_error_u, false) +
+                    end_part; // J'(E u - u) over I and at T
+  const double half_rho = 0.5 * apply(rho_u, recon_error_z, false),
+               half_rhostar = 0.5 * (jv - apply(adjoint_form_z, recon_error_u, true));
   const double eta_tau = time_indicator == TimeIndicator::average
                              ? half_rho + half_rhostar
                              : 2 * half_rhostar;
@@ -289,9 +302,9 @@ double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned in
 {
   for (unsigned int k = 0; k < n_nodes; ++k)
     sv::vmult(Rz_nodes[k], ops.restriction(i), z_nodes[k]);
-  slab_function(kernel, basis, tau, Rz_nodes, Riz);
-  difference(z, Riz, dz);
-  half_rho = 0.5 * apply(rho, dz, false);
+  slab_function(kernel, basis, tau, Rz_nodes, Ri_z);
+  difference(z, Ri_z, z_minus_Rz);
+  half_rho = 0.5 * apply(rho_u, z_minus_Rz, false);
   ind.eta_h_rho += half_rho;
   if (space_indicator == SpaceIndicator::primal_residual)
     return 2 * half_rho;
@@ -302,34 +315,34 @@ double IndicatorAssembly<dim>::directional_indicator(unsigned int i, unsigned in
     lift[i].apply(U[n], lift_nodes[k], n_nodes, k);
     sv::subtract(lift_nodes[k], u_nodes[k]);
   }
-  slab_function(kernel, basis, tau, lift_nodes, v);
-  for (const auto &vv : v.val)
+  slab_function(kernel, basis, tau, lift_nodes, lift_error);
+  for (const auto &vv : lift_error.val)
     lift_size += tau * sv::norm_sqr(vv);
   if (n > 0)
-    sv::copy(v.minus, v_last[i]); // I_2h,i u - u at U[n-1]'s last node
+    sv::copy(lift_error.minus, lift_error_last[i]); // I_2h,i u - u at U[n-1]'s last node
   else
-    v.minus.reinit(0);
-  sv::copy(v_last[i], lift_nodes[n_nodes - 1]);
-  double jv = apply(Jf, v, false); // J' over I
-  if (last && jT.size())
+    lift_error.minus.reinit(0);
+  sv::copy(lift_error_last[i], lift_nodes[n_nodes - 1]);
+  double jv = apply(goal_derivative, lift_error, false); // J' over I
+  if (last && goal_vector_T.size())
   {
     sv::zero(work_T);
     for (unsigned int k = 0; k < n_nodes; ++k)
       sv::add(work_T, basis.right_trace()[k], lift_nodes[k]);
-    jv += sv::dot(jT, work_T);
+    jv += sv::dot(goal_vector_T, work_T);
   }
-  const double half_rhostar =
-      0.5 * (jv - apply(A_rh, v, true)) + 0.5 * apply(S_rh, v, true);
+  const double half_rhostar = 0.5 * (jv - apply(adjoint_form_Rhz, lift_error, true)) +
+                              0.5 * apply(supg_derivative_Rhz, lift_error, true);
   ind.eta_h_rhostar += half_rhostar;
   return half_rho + half_rhostar;
 }
 
 template <int dim> void IndicatorAssembly<dim>::reconstruction_errors(double tau)
 {
-  ez.val.resize(kernel.n_points());
-  ez.dt.resize(kernel.n_points());
-  eu.val.resize(kernel.n_points());
-  eu.dt.resize(kernel.n_points());
+  recon_error_z.val.resize(kernel.n_points());
+  recon_error_z.dt.resize(kernel.n_points());
+  recon_error_u.val.resize(kernel.n_points());
+  recon_error_u.dt.resize(kernel.n_points());
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
   {
     for (bool deriv : {false, true})
@@ -351,21 +364,21 @@ template <int dim> void IndicatorAssembly<dim>::reconstruction_errors(double tau
         sv::scale(work_u, 1. / tau);
         sv::subtract(work_z, z.dt[m]);
         sv::subtract(work_u, u.dt[m]);
-        sv::copy(ez.dt[m], work_z);
-        sv::copy(eu.dt[m], work_u);
+        sv::copy(recon_error_z.dt[m], work_z);
+        sv::copy(recon_error_u.dt[m], work_u);
       }
       else
       {
         sv::subtract(work_z, z.val[m]);
         sv::subtract(work_u, u.val[m]);
-        sv::copy(ez.val[m], work_z);
-        sv::copy(eu.val[m], work_u);
+        sv::copy(recon_error_z.val[m], work_z);
+        sv::copy(recon_error_u.val[m], work_u);
       }
     }
   }
-  sv::zero(ez.plus, n_w);     // E z(t_{n-1}) = z(t_{n-1}^+)
-  sv::copy(eu.plus, u_prev); // E u(t_{n-1}) - u(t_{n-1}^+)
-  sv::subtract(eu.plus, u.plus);
+  sv::zero(recon_error_z.plus, n_w);    // E z(t_{n-1}) = z(t_{n-1}^+)
+  sv::copy(recon_error_u.plus, u_prev); // E u(t_{n-1}) - u(t_{n-1}^+)
+  sv::subtract(recon_error_u.plus, u.plus);
 }
 
 template <int dim>
@@ -393,26 +406,26 @@ double IndicatorAssembly<dim>::higher_order_errors(unsigned int n, double tau, b
     }
     sv::subtract(work_u, u.val[m]);
     sv::subtract(tmp, u.dt[m]);
-    sv::copy(eu.val[m], work_u);
-    sv::copy(eu.dt[m], tmp);
+    sv::copy(recon_error_u.val[m], work_u);
+    sv::copy(recon_error_u.dt[m], tmp);
   }
-  eu.plus = 0.;
+  recon_error_u.plus = 0.;
   for (unsigned int k = 0; k < n_nodes_hi; ++k)
-    eu.plus.add(hi->basis.left_trace()[k], u_hi_nodes[k]);
-  eu.plus -= u.plus;
+    recon_error_u.plus.add(hi->basis.left_trace()[k], u_hi_nodes[k]);
+  recon_error_u.plus -= u.plus;
   if (n > 0)
   {
     e_prev -= u_prev; // u(t_{n-1}^-)
-    eu.plus -= e_prev;
+    recon_error_u.plus -= e_prev;
   }
-  if (!(last && jT.size()))
+  if (!(last && goal_vector_T.size()))
     return 0.;
   work_T = 0.;
   for (unsigned int k = 0; k < n_nodes_hi; ++k)
     work_T.add(hi->basis.right_trace()[k], u_hi_nodes[k]);
   for (unsigned int k = 0; k < n_nodes; ++k)
     work_T.add(-basis.right_trace()[k], u_nodes[k]);
-  return jT * work_T;
+  return goal_vector_T * work_T;
 }
 } // namespace
 
@@ -437,8 +450,9 @@ void allreduce_chunks(std::vector<Indicators<dim>> &sums, Indicators<dim> &ind)
         visit(e);
       for (auto &e : s.eta_h)
         visit(e);
-      for (double *e : {&s.eta_tau, &s.eta_tau_rho, &s.eta_tau_rhostar, &s.eta_h_rho,
-                        &s.eta_h_rhostar, &s.eta_h_supg, &s.eta_h_split_rest, &s.eta_h_data})
+      for (double *e :
+           {&s.eta_tau, &s.eta_tau_rho, &s.eta_tau_rhostar, &s.eta_h_rho,
+            &s.eta_h_rhostar, &s.eta_h_supg, &s.eta_h_split_rest, &s.eta_h_data})
         visit(*e);
       double no_lift = s.no_lift;
       visit(no_lift);
