@@ -9,13 +9,16 @@
 # Usage: scripts/bench_error_control.sh [OUTDIR] [PROBLEM ...]   (default: all)
 # Env: LOOPS (default 40), the loop limit beside the tolerance; MAX_WALL (default 300 s),
 # adaptivity.max_wall_time of each run; EXTRA_SET (default empty), further key=value
-# overrides given to every run (e.g. "adaptivity.time_balance=0.1"), for a comparison.
+# overrides given to every run (e.g. "adaptivity.time_balance=0.1"), for a comparison;
+# TOL_SCALE (default 1), a factor on every problem's tolerance (0.1: each run refined
+# past its benchmark stop).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 OUT=${1:-$ROOT/results/bench_error_control}
 shift || true
 LOOPS=${LOOPS:-40}
 MAX_WALL=${MAX_WALL:-300}
+TOL_SCALE=${TOL_SCALE:-1}
 extra=()
 for kv in ${EXTRA_SET:-}; do extra+=(--set "$kv"); done
 mkdir -p "$OUT/configs"
@@ -42,6 +45,7 @@ for entry in "${problems[@]}"; do
     continue
   fi
   names+=("$name")
+  tol=$(/usr/bin/python3 -c "print('%g' % ($tol * $TOL_SCALE))")
   if [[ "$config" == config/* ]]; then
     file="$ROOT/$config"
   else
