@@ -59,8 +59,8 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
       {
         const Tensor<1, dim> &gw = fv_w.shape_grad(l, q);
         rho.val[m](l) += jx * R * fv_w.shape_value(l, q);
-        supg.val[m](l) += jx * (weak_form::cell_diffusion(cw.D, grad, gw) -
-                                R * weak_form::supg_test(delta, cf.b, gw));
+        supg.val[m](l) +=
+            jx * (cw.form(grad, gw) - R * weak_form::supg_test(delta, cf.b, gw));
       }
     }
   }
@@ -71,11 +71,12 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
 }
 
 template <int dim>
-bool CellKernel<dim>::dirichlet_data_functionals(double t0, double tau,
-                                                 const Vector<double> &Un,
-                                                 std::array<SlabFunctional, dim> &data) const
+bool CellKernel<dim>::dirichlet_data_functionals(
+    double t0, double tau, const Vector<double> &Un,
+    std::array<SlabFunctional, dim> &data) const
 {
-  if (std::none_of(pieces.begin(), pieces.end(), [](const Piece &pc) { return pc.kind == 2; }))
+  if (std::none_of(pieces.begin(), pieces.end(),
+                   [](const Piece &pc) { return pc.kind == 2; }))
     return false;
   const unsigned int nw = fe_w.n_dofs_per_cell(), np = fe_p.n_dofs_per_cell();
   for (auto &d : data)
@@ -248,9 +249,9 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau,
         A.dt[m](l) += jx * phi * test;
         if (supg)
           A.val[m](l) +=
-              jx * (weak_form::strong(cf, phi, gphi, trace(fv_w.shape_hessian(l, q))) *
-                        test +
-                    weak_form::cell_diffusion(cw.D, gphi, gz));
+              jx *
+              (weak_form::strong(cf, phi, gphi, trace(fv_w.shape_hessian(l, q))) * test +
+               cw.form(gphi, gz));
         else
           A.val[m](l) += jx * weak_form::galerkin(cf, phi, gphi, zq, gz);
       }
@@ -275,9 +276,9 @@ template void CellKernel<2>::adjoint_functional(double, double,
                                                 const std::vector<Vector<double>> &,
                                                 const SlabFunction &, bool,
                                                 SlabFunctional &) const;
-template bool CellKernel<2>::dirichlet_data_functionals(double, double,
-                                                       const Vector<double> &,
-                                                       std::array<SlabFunctional, 2> &) const;
+template bool
+CellKernel<2>::dirichlet_data_functionals(double, double, const Vector<double> &,
+                                          std::array<SlabFunctional, 2> &) const;
 template void CellKernel<2>::goal_functional(double, const Vector<double> &,
                                              SlabFunctional &) const;
 } // namespace anisodwr

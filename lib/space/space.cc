@@ -22,8 +22,7 @@ template <int dim>
 Space<dim>::Space(const Scene<dim> &scene, const Triangulation<dim> &tria,
                   unsigned int degree, const Stabilization &stabilization,
                   unsigned int mapping_degree)
-    : scene(scene), stab(stabilization), fe(degree),
-      map(mapping_degree), dofs(tria)
+    : scene(scene), stab(stabilization), fe(degree), map(mapping_degree), dofs(tria)
 {
 }
 
@@ -58,8 +57,8 @@ void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> 
   DoFTools::make_hanging_node_constraints(dofs, c);
   for (const auto id : scene.dirichlet_ids)
   {
-    const ScalarFunctionFromFunctionObject<dim> g([&](const Point<dim> &x)
-                                                  { return scene.boundary_value(x, t, id); });
+    const ScalarFunctionFromFunctionObject<dim> g(
+        [&](const Point<dim> &x) { return scene.boundary_value(x, t, id); });
     VectorTools::interpolate_boundary_values(map, dofs, id, g, c);
   }
   c.close();
@@ -91,7 +90,8 @@ double Space<dim>::length_along(const typename Triangulation<dim>::cell_iterator
 }
 
 template <int dim>
-double Space<dim>::unbounded_delta(const typename Triangulation<dim>::cell_iterator &cell) const
+double
+Space<dim>::unbounded_delta(const typename Triangulation<dim>::cell_iterator &cell) const
 {
   const double delta0 = stab.delta0;
   if (delta0 == 0.)
@@ -127,14 +127,16 @@ Space<dim>::cell_diffusion(const typename Triangulation<dim>::cell_iterator &cel
       seen = StabilizationCell{
           scene.convection(cell->center(), 0.), scene.epsilon,
           [this, &cell](const Tensor<1, dim> &beta) { return length_along(cell, beta); },
-          cw_scale.empty() || !cell->is_active() ? 1. : cw_scale[cell->active_cell_index()]};
+          cw_scale.empty() || !cell->is_active() ? 1.
+                                                 : cw_scale[cell->active_cell_index()]};
     sum.D += term.diffusion(stab, *seen);
   }
   sum.active = sum.D.norm_square() != 0.;
   return sum;
 }
 
-template <int dim> void Space<dim>::assemble_matrices(double t, double tau, SpatialMatrices &m) const
+template <int dim>
+void Space<dim>::assemble_matrices(double t, double tau, SpatialMatrices &m) const
 {
   for (auto *mat : {&m.M, &m.A, &m.Mc, &m.Ac})
     mat->reinit(pattern);
@@ -169,8 +171,7 @@ template <int dim> void Space<dim>::assemble_matrices(double t, double tau, Spat
               weak_form::strong(c, phi_j, grad_j, trace(fv.shape_hessian(j, q)));
           cm(i, j) += phi_j * (phi_i + supg_i) * JxW;
           ca(i, j) += (weak_form::galerkin(c, phi_j, grad_j, phi_i, grad_i) +
-                       strong_j * supg_i +
-                       weak_form::cell_diffusion(cw.D, grad_j, grad_i)) *
+                       strong_j * supg_i + cw.form(grad_j, grad_i)) *
                       JxW;
         }
       }
@@ -226,8 +227,8 @@ void Space<dim>::assemble_volume_loads(
         {
           const Tensor<1, dim> bq = b(x, k);
           for (unsigned int i = 0; i < n; ++i)
-            cf(i) +=
-                fq * (fv.shape_value(i, q) + weak_form::supg_test(dK, bq, fv.shape_grad(i, q)));
+            cf(i) += fq * (fv.shape_value(i, q) +
+                           weak_form::supg_test(dK, bq, fv.shape_grad(i, q)));
         }
       }
       for (unsigned int i = 0; i < n; ++i)
@@ -251,7 +252,8 @@ void Space<dim>::add_neumann_loads(const std::vector<double> &times,
   for (const auto &cell : dofs.active_cell_iterators())
     if (cell->at_boundary())
       for (const auto face : cell->face_indices())
-        if (cell->at_boundary(face) && scene.neumann_ids.count(cell->face(face)->boundary_id()))
+        if (cell->at_boundary(face) &&
+            scene.neumann_ids.count(cell->face(face)->boundary_id()))
         {
           const types::boundary_id id = cell->face(face)->boundary_id();
           ffv.reinit(cell, face);
@@ -275,9 +277,10 @@ void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
   std::vector<LoadTerm<dim>> terms;
   if (!scene.separable_rhs(terms))
     assemble_volume_loads(
-        times.size(), tau, [&](const Point<dim> &x, unsigned int k)
-        { return scene.rhs(x, times[k]); },
-        [&](const Point<dim> &x, unsigned int k) { return scene.convection(x, times[k]); },
+        times.size(), tau,
+        [&](const Point<dim> &x, unsigned int k) { return scene.rhs(x, times[k]); },
+        [&](const Point<dim> &x, unsigned int k)
+        { return scene.convection(x, times[k]); },
         F);
   else
   {
@@ -291,8 +294,8 @@ void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
         load_terms.clear();
       G = load_terms.emplace(key, std::vector<Vector<double>>()).first;
       assemble_volume_loads(
-          terms.size(), tau, [&](const Point<dim> &x, unsigned int j)
-          { return terms[j].g(x); },
+          terms.size(), tau,
+          [&](const Point<dim> &x, unsigned int j) { return terms[j].g(x); },
           [&](const Point<dim> &x, unsigned int) { return scene.convection(x, 0.); },
           G->second);
     }

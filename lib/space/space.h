@@ -2,6 +2,8 @@
 // One spatial finite element space on a (possibly anisotropically refined) mesh:
 // FE_Q(p), DoFs, hanging-node + Dirichlet constraints, the sparsity pattern, and
 // the assembly of the SUPG spatial matrices and load vectors of doc/method.md §2-3.
+#include "space/weak_form.h"
+
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/mapping_q.h>
@@ -92,7 +94,8 @@ public:
     return bounded_delta(unbounded_delta(cell), tau);
   }
   /// delta0 h_K, before the bound by tau_n.
-  double unbounded_delta(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
+  double
+  unbounded_delta(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
   /// min(d, supg_tau_factor * tau) (d if supg_tau_factor == 0).
   double bounded_delta(double d, double tau) const
   {
@@ -106,6 +109,13 @@ public:
   {
     dealii::Tensor<2, dim> D;
     bool active = false;
+    /// The integrand (D_K grad u, grad v) (weak_form::cell_diffusion); 0 without work
+    /// where no term acts.
+    double form(const dealii::Tensor<1, dim> &grad_u,
+                const dealii::Tensor<1, dim> &grad_v) const
+    {
+      return active ? weak_form::cell_diffusion(D, grad_u, grad_v) : 0.;
+    }
   };
   CellDiffusion
   cell_diffusion(const typename dealii::Triangulation<dim>::cell_iterator &cell) const;
@@ -115,7 +125,10 @@ public:
   /// solution). Empty: 1 on every cell. Set before the first assembly.
   void set_crosswind_scale(std::vector<double> scale) { cw_scale = std::move(scale); }
   /// Whether delta_K (and so M, A and the loads) depends on the slab length.
-  bool delta_depends_on_tau() const { return stab.supg_tau_factor > 0 && stab.delta0 > 0; }
+  bool delta_depends_on_tau() const
+  {
+    return stab.supg_tau_factor > 0 && stab.delta0 > 0;
+  }
 
   const Scene<dim> &scene;
 
@@ -132,12 +145,13 @@ private:
   dealii::AffineConstraints<double> homogeneous;
   dealii::SparsityPattern pattern;
 
-  /// sum_k f_k(x, k) (phi_i + delta_K b_k(x).grad phi_i) over the cells, one vector per k.
+  /// sum_k f_k(x, k) (phi_i + delta_K b_k(x).grad phi_i) over the cells, one vector per
+  /// k.
   void assemble_volume_loads(
       unsigned int n_sources, double tau,
       const std::function<double(const dealii::Point<dim> &, unsigned int)> &f,
-      const std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &, unsigned int)>
-          &b,
+      const std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &,
+                                                 unsigned int)> &b,
       std::vector<dealii::Vector<double>> &F) const;
   /// Adds (u_N(t_k), phi_i)_{Gamma_N} to F[k].
   void add_neumann_loads(const std::vector<double> &times,
