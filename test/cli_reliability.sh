@@ -262,12 +262,12 @@ fi
 # (loop 3: the two goals' estimates 0.28 and 0.48 on loops 1-2 are not hidden by their
 # signed sum, 0.199 at loop 1). Each run: the last loop's measure is below the tolerance,
 # every earlier one is not; eta_abs is |eta_h,x| + |eta_h,y| + |eta_tau| (to the 8
-# digits of loops.csv) and >= |eta|.
+# digits of loops.csv) and >= |eta|. (The drift check is off here: tolerance_drift = 0.)
 for measure in eta parts goals; do
   d=$tmp/tolerance_$measure
   expect 0 "stopped: tolerance" -- run "$src/config/moving_hump_paper.json" --output "$d" \
     --set adaptivity.loops=12 --set adaptivity.tolerance=0.2 \
-    --set adaptivity.tolerance_measure=$measure
+    --set adaptivity.tolerance_measure=$measure --set adaptivity.tolerance_drift=0
   if ! /usr/bin/python3 - "$d/loops.csv" "$measure" "$d/summary.json" <<'PY'; then
 import csv, json, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
@@ -288,6 +288,32 @@ PY
     fail=1
   fi
 done
+
+# adaptivity.tolerance_drift (default 1): the stop also needs the corrected goal values
+# J + eta to have moved by at most the tolerance since the previous loop. loops.csv's
+# eta_drift is |(J + eta_tau h) - (J + eta_tau h) of the loop before| (weights 1, one
+# adjoint), empty on loop 1; the run stops at the first loop with eta_abs < 0.2 and
+# eta_drift <= 0.2, and says "refining on" for a loop that met the measure only (loop 6:
+# its parts sum is below 0.2, the corrected values moved by more).
+d=$tmp/tolerance_drift
+expect 0 "refining on" -- run "$src/config/moving_hump_paper.json" --output "$d" \
+  --set adaptivity.loops=12 --set adaptivity.tolerance=0.2
+if ! /usr/bin/python3 - "$d/loops.csv" "$d/summary.json" <<'PY'; then
+import csv, json, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+corrected = [float(r["J"]) + float(r["eta_tauh"]) for r in rows]
+drift = [float(r["eta_drift"] or "nan") for r in rows]
+want = [math.nan] + [abs(a - b) for a, b in zip(corrected[1:], corrected)]
+ok = math.isnan(drift[0]) and all(abs(a - b) <= 1e-6 * b + 1e-12 for a, b in zip(drift[1:], want[1:]))
+meets = [float(r["eta_abs"]) < 0.2 and d <= 0.2 for r, d in zip(rows, drift)]
+ok = ok and meets[-1] and not any(meets[:-1])
+ok = ok and json.load(open(sys.argv[2]))["stop_reason"] == "tolerance"
+ok = ok and any(float(r["eta_abs"]) < 0.2 for r in rows[:-1])  # the drift delayed the stop
+print(("ok" if ok else "FAIL") + f": tolerance_drift stops after loop {len(rows)}; drift {drift}")
+sys.exit(0 if ok else 1)
+PY
+  fail=1
+fi
 
 # a blow-up (slabs shorter than delta_K without the bound delta_K <= tau_n) stops the run
 # with exit 3, naming the loop and slab, and the loops before it stay on disk

@@ -609,6 +609,37 @@ TEST(LoopRow, EtaGoalsMaxTakesTheLargestWeightedGoalEstimate)
   EXPECT_DOUBLE_EQ(row.eta_goals_max(), 0.15);
 }
 
+// adaptivity.tolerance_drift: the corrected goal values J_i + eta_i of two loops. Exact
+// estimates (J_i + eta_i = J_i(u) on both loops) give 0; otherwise the sum over the goals
+// of |w_i| times the change, with the later loop's weights; the weighted goal's own
+// J + eta_tau h where the goals have no estimates of their own, if the weights are the
+// same; NaN if they changed.
+TEST(LoopRow, CorrectedDriftComparesTheGoalsCorrectedValues)
+{
+  LoopRow a, b;
+  a.J_goal = {1.0, -2.0};
+  a.eta_goal = {0.5, 0.25}; // J_i(u) = 1.5, -1.75
+  a.weights = {1., 1.};
+  b.J_goal = {1.25, -1.5};
+  b.eta_goal = {0.25, -0.25};
+  b.weights = {2., -4.};
+  EXPECT_DOUBLE_EQ(corrected_drift(a, b), 0.);
+  b.eta_goal = {0.5, -0.5}; // misses by +0.25 and -0.25 more than loop a
+  EXPECT_DOUBLE_EQ(corrected_drift(a, b), 2. * 0.25 + 4. * 0.25);
+  // no estimates per goal: the weighted goal's J + eta_tau h, same weights
+  a.eta_goal.clear();
+  b.weights = a.weights;
+  a.J = 3.;
+  a.eta_h_total = 0.5;
+  a.eta_tau = -0.25;
+  b.J = 2.;
+  b.eta_h_total = 1.;
+  b.eta_tau = 0.5;
+  EXPECT_DOUBLE_EQ(corrected_drift(a, b), 0.25);
+  b.weights = {1., -1.};
+  EXPECT_TRUE(std::isnan(corrected_drift(a, b)));
+}
+
 // The crosswind entry of the stabilization terms' table: D_K = eps_cw a a^T with a the
 // unit vector across b, eps_cw = s_K crosswind0 max(0, |b| h_cw / 2 - eps); nothing along b.
 TEST(StabilizationTerms, CrosswindDiffusesAcrossBOnly)

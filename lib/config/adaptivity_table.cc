@@ -55,7 +55,8 @@ std::vector<Entry> adaptivity_entries()
        "a fraction in [0, 1]", Check::fraction},
       {"adaptivity", "tolerance", "0", m(&S::tolerance), real(0.),
        "Stop when the estimate named by adaptivity.tolerance_measure is below tolerance "
-       "(0: no tolerance). It bounds the error of the combined goal J_w = sum_i w_i J_i "
+       "and the corrected goal values have settled (adaptivity.tolerance_drift; 0: no "
+       "tolerance). It bounds the error of the combined goal J_w = sum_i w_i J_i "
        "within the effectivity band (doc/results.md, 'Error control without tuning'): "
        "absolute in J_w's units for numeric goal.weights, relative for goal.weights = "
        "estimate (the default) or auto (w_i = +-1/|J_i(u_h)|: the sum over the goals of "
@@ -72,6 +73,15 @@ std::vector<Entry> adaptivity_entries()
        "per_goal_estimates), with goal.weights = auto or estimate the largest relative "
        "error of a single goal: the goals cannot cancel each other, a goal's space and "
        "time parts can (config/hemker.json, doc/configs.md#hemker)."},
+      {"adaptivity", "tolerance_drift", "1", m(&S::tolerance_drift), real(0.),
+       "The tolerance stop's second condition: the goals' corrected values J_i(u_h) + "
+       "eta_i (J_w + eta_tau h without estimates per goal) may have moved since the "
+       "previous loop by at most tolerance_drift * tolerance, summed over the goals "
+       "with weights |w_i| (loops.csv eta_drift). If both loops' estimates were exact "
+       "the corrected values would agree; a drift above the tolerance says that one of "
+       "them missed the error by more than the tolerance (an adjoint that does not yet "
+       "resolve its goal, a pre-asymptotic mesh), so the loop goes on. 0: not checked "
+       "(the estimate alone stops the run); never checked on loop 1."},
       {"adaptivity", "max_dofs", "0", m(&S::max_dofs), real(0.),
        "Stop before a loop whose N_tot would exceed this (0: no budget)."},
       {"adaptivity", "max_memory_mb", "0", m(&S::max_memory_mb), real(0.),

@@ -112,6 +112,9 @@ struct AdaptivitySection : MarkingOptions
   double time_balance = 0.5;
   double tolerance = 0.;
   ToleranceMeasure tolerance_measure = ToleranceMeasure::parts;
+  /// the tolerance stop also needs LoopRow::eta_drift <= tolerance_drift * tolerance
+  /// (0: not checked)
+  double tolerance_drift = 1.;
   double max_dofs = 0.;
   double max_memory_mb = 0.;
   double max_wall_time = 0.; ///< s; 0: no budget

@@ -113,7 +113,7 @@ private:
                         const Space<2> &adjoint, std::vector<std::vector<Vector<double>>> Z,
                         const std::vector<Vector<double>> &U, const HigherOrderPrimal *hi);
   /// True if the run ends after this loop (stop_reason says why).
-  bool stop_after(const LoopRow &row);
+  bool stop_after(LoopRow &row);
   /// Tables, summary and console line of a finished loop.
   void record(const LoopRow &row);
   void summary(const std::string &status, const std::string &reason, double wall_time,

@@ -354,18 +354,31 @@ std::vector<double> AdaptiveLoop::crosswind_scale_of_mesh() const
   return scale;
 }
 
-bool AdaptiveLoop::stop_after(const LoopRow &row)
+bool AdaptiveLoop::stop_after(LoopRow &row)
 {
+  if (!rows.empty())
+    row.eta_drift = corrected_drift(rows.back(), row);
   if (row.loop == prm.adaptivity.loops)
     return true;
-  const ToleranceMeasure measure = prm.adaptivity.tolerance_measure;
-  const double estimate = measure == ToleranceMeasure::parts   ? row.eta_parts_abs()
-                          : measure == ToleranceMeasure::goals ? row.eta_goals_max()
-                                                               : std::abs(row.eta_h_total + row.eta_tau);
-  if (prm.adaptivity.tolerance > 0 && estimate < prm.adaptivity.tolerance)
+  const auto &a = prm.adaptivity;
+  const double estimate = a.tolerance_measure == ToleranceMeasure::parts ? row.eta_parts_abs()
+                          : a.tolerance_measure == ToleranceMeasure::goals
+                              ? row.eta_goals_max()
+                              : std::abs(row.eta_h_total + row.eta_tau);
+  if (a.tolerance > 0 && estimate < a.tolerance)
   {
-    stop_reason = "tolerance";
-    return true;
+    // NaN (loop 1, or weights that changed without estimates per goal) fails the test
+    if (a.tolerance_drift <= 0 || row.eta_drift <= a.tolerance_drift * a.tolerance)
+    {
+      stop_reason = "tolerance";
+      return true;
+    }
+    if (writes_output())
+      std::cout << "loop " << row.loop << ": estimate " << estimate
+                << " is below adaptivity.tolerance " << a.tolerance
+                << ", but the corrected goal values moved by " << row.eta_drift
+                << (rows.empty() ? " (no previous loop)" : "")
+                << " (adaptivity.tolerance_drift): refining on" << std::endl;
   }
   if (prm.adaptivity.max_wall_time > 0 &&
       mpi_max(wall.wall_time() + 2. * (row.t_primal + row.t_adjoint + row.t_estimate)) >

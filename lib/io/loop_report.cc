@@ -67,7 +67,7 @@ std::vector<double> LoopRow::all_values() const
             double(marking[1]), double(marking[2]), double(marking[3]),
             double(marking[4]), mem_estimate, eta_h_rho, eta_h_rhostar, eta_h_supg,
             no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest,
-            eta_parts_abs(), hanging_gap, eta_h_data, double(bound_cuts)});
+            eta_parts_abs(), hanging_gap, eta_h_data, double(bound_cuts), eta_drift});
   return v;
 }
 
@@ -79,6 +79,25 @@ double LoopRow::eta_goals_max() const
   for (std::size_t g = 0; g < eta_goal.size(); ++g)
     m = std::max(m, std::abs(weights[g] * eta_goal[g]));
   return m;
+}
+
+double corrected_drift(const LoopRow &previous, const LoopRow &row)
+{
+  const std::size_t n = row.J_goal.size();
+  const auto per_goal = [n](const LoopRow &r)
+  { return r.eta_goal.size() == n && r.weights.size() == n && r.J_goal.size() == n; };
+  if (n > 0 && per_goal(row) && per_goal(previous))
+  {
+    double drift = 0;
+    for (std::size_t g = 0; g < n; ++g)
+      drift += std::abs(row.weights[g]) * std::abs((row.J_goal[g] + row.eta_goal[g]) -
+                                                   (previous.J_goal[g] + previous.eta_goal[g]));
+    return drift;
+  }
+  if (row.weights != previous.weights)
+    return LoopRow::nan;
+  return std::abs((row.J + row.eta_h_total + row.eta_tau) -
+                  (previous.J + previous.eta_h_total + previous.eta_tau));
 }
 
 double LoopRow::eta_parts_abs() const
@@ -127,8 +146,8 @@ double LoopRow::eta_time_abs() const
 /// factor sizes of the primal and adjoint slab matrices (MB), whether the primal and
 /// the adjoint marched concurrently (1/0), the remainder of the directional split and
 /// LoopRow::eta_parts_abs(), the mesh's hanging-node mismatch (max_hanging_gap) and the
-/// Dirichlet data's share of eta_h (Indicators::eta_h_data), and the cells that
-/// adaptivity.bound_refinement cut.
+/// Dirichlet data's share of eta_h (Indicators::eta_h_data), the cells that
+/// adaptivity.bound_refinement cut and the corrected goal values' drift (eta_drift).
 std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names)
 {
   auto c = columns;
@@ -141,7 +160,7 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
             "marked_x", "marked_y", "marked_xy", "closure", "memory_estimate_mb",
             "eta_h_rho", "eta_h_rhostar", "eta_h_supg", "no_lift", "lu_primal_mb",
             "lu_adjoint_mb", "concurrent", "eta_h_split_rest", "eta_abs",
-            "hanging_gap", "eta_h_data", "bound_cuts"});
+            "hanging_gap", "eta_h_data", "bound_cuts", "eta_drift"});
   return c;
 }
 

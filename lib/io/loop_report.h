@@ -56,6 +56,9 @@ struct LoopRow
   std::array<unsigned int, 5> marking{};
   /// cells whose refinement flag adaptivity.bound_refinement set or extended
   unsigned int bound_cuts = 0;
+  /// |sum_i w_i ((J_i + eta_i) - (J_i + eta_i) of the previous loop)|, the corrected goal
+  /// values' change since the previous loop (corrected_drift; NaN on loop 1)
+  double eta_drift = nan;
   /// the probes by name (the columns of probes.csv) and the bounds they used
   std::vector<std::pair<std::string, double>> probes;
   std::string bounds; ///< where the probes' bounds come from (ProbeResult::bounds)
@@ -77,6 +80,14 @@ struct LoopRow
   /// values() followed by the columns loop_columns adds for the goals
   std::vector<double> all_values() const;
 };
+
+/// How far the corrected goal values J_i(u_h) + eta_i moved from `previous` to `row`:
+/// sum_i |w_i| |(J_i + eta_i)(row) - (J_i + eta_i)(previous)| with row's weights where
+/// both rows have an estimate per goal, else |(J + eta_tau h)(row) - (J + eta_tau
+/// h)(previous)| of the weighted goal if the weights did not change; NaN otherwise (the
+/// weighted goals of two loops are not the same quantity). Exact estimates give 0: the
+/// drift is the change of the estimates' misses, e - eta, between the loops.
+double corrected_drift(const LoopRow &previous, const LoopRow &row);
 
 /// The columns of loops.csv (and of each loop in summary.json) for the goals named.
 std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names);
