@@ -77,6 +77,21 @@ def wrong_sign_goals(row, tol, goals):
     return out
 
 
+def space_time_parts(row, loop):
+    """|eta_h,x| + |eta_h,y| and |eta_tau| as the tolerance's measure (parts) sums them: per
+    goal, weighted by |w_i|, where every goal has its own parts in summary.json (loop);
+    else the weighted goal's."""
+    goals = loop.get("goals", {})
+    if goals and all(loop.get("eta_tau_" + n) is not None for n in goals):
+        w = {n: abs(number(g.get("weight"))) for n, g in goals.items()}
+        space = sum(w[n] * (abs(number(loop.get("eta_hx_" + n))) +
+                            abs(number(loop.get("eta_hy_" + n)))) for n in goals)
+        time = sum(w[n] * abs(number(loop.get("eta_tau_" + n))) for n in goals)
+        if math.isfinite(space) and math.isfinite(time):
+            return space, time
+    return abs(row["eta_h"]), abs(row["eta_tau"])
+
+
 def main():
     out, names = sys.argv[1], sys.argv[2:]
     per_loop, per_problem = [], []
@@ -105,7 +120,7 @@ def main():
                   all(WIDE[0] <= r[k] <= WIDE[1] for k in ("I_h", "I_tau"))]
         wrong = [f'{int(r["loop"])}:{",".join(wrong_sign_goals(r, tol, goals(r)))}'
                  for r in big if wrong_sign_goals(r, tol, goals(r))]
-        eh, et = abs(last["eta_h"]), abs(last["eta_tau"])
+        eh, et = space_time_parts(last, by_loop.get(int(last["loop"]), {}))
         ratio = max(eh, et) / max(min(eh, et), 1e-300)
         balanced = ratio <= 10 or min(eh, et) < tol / 100
         err = abs(last["J_error"])
