@@ -19,6 +19,9 @@ if [ -n "$missing" ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
 
+# On a CI machine (CI=true) the build starts from an empty ccache: every lookup misses,
+# and storing the objects made the Release build 191 s against 140 s without ccache.
+if [ "${CI:-}" = true ]; then export CCACHE_DISABLE=1; fi
 BUILD=${ANISODWR_BUILD_DIR:-$ROOT/build}
 # The library compiles as unity batches of 7 sources (about a minute less on a fresh
 # clone; ANISODWR_UNITY=0 configures one object per source, for editing a few files).
