@@ -316,6 +316,19 @@ PY
   fail=1
 fi
 
+# goal.weights = auto with tolerance_measure = parts: one adjoint for the weighted goal,
+# whose weights +-1/|J_i(u_h)| change every loop, so the drift is not defined (eta_drift
+# empty) and not checked: the run stops at loop 2 (loop 1 has no previous loop)
+d=$tmp/tolerance_auto_weights
+expect 0 "stopped: tolerance" -- run "$hemker" --output "$d" --set adaptivity.loops=4 \
+  --set adaptivity.tolerance_measure=parts --set adaptivity.tolerance=100 --set output.vtu_loops=0
+if [ "$(($(wc -l <"$d/loops.csv") - 1))" != 2 ]; then
+  echo "FAIL: goal.weights = auto stopped after $(($(wc -l <"$d/loops.csv") - 1)) loops, want 2"
+  fail=1
+else
+  echo "ok: goal.weights = auto stops by the tolerance at loop 2"
+fi
+
 # a blow-up (slabs shorter than delta_K without the bound delta_K <= tau_n) stops the run
 # with exit 3, naming the loop and slab, and the loops before it stay on disk
 d=$tmp/blowup

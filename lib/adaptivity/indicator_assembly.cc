@@ -1,7 +1,6 @@
 #include "adaptivity/indicator_assembly.h"
 
 #include "adaptivity/short_vectors.h"
-#include "slab/adjoint_march.h"
 
 #include <algorithm>
 #include <cmath>

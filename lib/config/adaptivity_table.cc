@@ -81,7 +81,10 @@ std::vector<Entry> adaptivity_entries()
        "the corrected values would agree; a drift above the tolerance says that one of "
        "them missed the error by more than the tolerance (an adjoint that does not yet "
        "resolve its goal, a pre-asymptotic mesh), so the loop goes on. 0: not checked "
-       "(the estimate alone stops the run); never checked on loop 1."},
+       "(the estimate alone stops the run). Loop 1 never stops by the tolerance; not "
+       "checked where the weights changed and the goals have no estimates of their "
+       "own (goal.weights = auto with tolerance_measure = parts or eta: the weighted "
+       "goals of two loops differ; eta_drift empty)."},
       {"adaptivity", "max_dofs", "0", m(&S::max_dofs), real(0.),
        "Stop before a loop whose N_tot would exceed this (0: no budget)."},
       {"adaptivity", "max_memory_mb", "0", m(&S::max_memory_mb), real(0.),

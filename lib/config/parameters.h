@@ -112,8 +112,8 @@ struct AdaptivitySection : MarkingOptions
   double time_balance = 0.5;
   double tolerance = 0.;
   ToleranceMeasure tolerance_measure = ToleranceMeasure::parts;
-  /// the tolerance stop also needs LoopRow::eta_drift <= tolerance_drift * tolerance
-  /// (0: not checked)
+  /// the tolerance stop also needs a previous loop and LoopRow::eta_drift <=
+  /// tolerance_drift * tolerance where eta_drift is defined (0: not checked)
   double tolerance_drift = 1.;
   double max_dofs = 0.;
   double max_memory_mb = 0.;

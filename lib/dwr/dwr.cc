@@ -367,18 +367,25 @@ bool AdaptiveLoop::stop_after(LoopRow &row)
                               : std::abs(row.eta_h_total + row.eta_tau);
   if (a.tolerance > 0 && estimate < a.tolerance)
   {
-    // NaN (loop 1, or weights that changed without estimates per goal) fails the test
-    if (a.tolerance_drift <= 0 || row.eta_drift <= a.tolerance_drift * a.tolerance)
+    // loop 1 has nothing to compare with; a NaN drift after it (weights that changed
+    // without estimates per goal: the weighted goals differ) is not checked
+    const bool settled = a.tolerance_drift <= 0 ||
+                         (!rows.empty() && !(row.eta_drift > a.tolerance_drift * a.tolerance));
+    if (settled)
     {
       stop_reason = "tolerance";
       return true;
     }
     if (writes_output())
+    {
       std::cout << "loop " << row.loop << ": estimate " << estimate
-                << " is below adaptivity.tolerance " << a.tolerance
-                << ", but the corrected goal values moved by " << row.eta_drift
-                << (rows.empty() ? " (no previous loop)" : "")
-                << " (adaptivity.tolerance_drift): refining on" << std::endl;
+                << " is below adaptivity.tolerance " << a.tolerance << ", but ";
+      if (rows.empty())
+        std::cout << "the stop compares the corrected goal values with a previous loop";
+      else
+        std::cout << "the corrected goal values moved by " << row.eta_drift;
+      std::cout << " (adaptivity.tolerance_drift): refining on" << std::endl;
+    }
   }
   if (prm.adaptivity.max_wall_time > 0 &&
       mpi_max(wall.wall_time() + 2. * (row.t_primal + row.t_adjoint + row.t_estimate)) >

@@ -57,7 +57,8 @@ struct LoopRow
   /// cells whose refinement flag adaptivity.bound_refinement set or extended
   unsigned int bound_cuts = 0;
   /// |sum_i w_i ((J_i + eta_i) - (J_i + eta_i) of the previous loop)|, the corrected goal
-  /// values' change since the previous loop (corrected_drift; NaN on loop 1)
+  /// values' change since the previous loop (corrected_drift; NaN on loop 1 and where
+  /// the two loops' weighted goals differ)
   double eta_drift = nan;
   /// the probes by name (the columns of probes.csv) and the bounds they used
   std::vector<std::pair<std::string, double>> probes;
@@ -85,7 +86,7 @@ struct LoopRow
 /// sum_i |w_i| |(J_i + eta_i)(row) - (J_i + eta_i)(previous)| with row's weights where
 /// both rows have an estimate per goal, else |(J + eta_tau h)(row) - (J + eta_tau
 /// h)(previous)| of the weighted goal if the weights did not change; NaN otherwise (the
-/// weighted goals of two loops are not the same quantity). Exact estimates give 0: the
+/// weighted goals of two loops are not the same quantity: the stop does not check it). Exact estimates give 0: the
 /// drift is the change of the estimates' misses, e - eta, between the loops.
 double corrected_drift(const LoopRow &previous, const LoopRow &row);
 
