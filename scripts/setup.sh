@@ -5,7 +5,7 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # libopenblas0-pthread replaces the reference BLAS/LAPACK (update-alternatives) under
 # UMFPACK, MUMPS and LAPACK: UMFPACK factorizes 4.5-7.7x faster (doc/results.md).
-PACKAGES="libdeal.ii-dev libmumps-dev openmpi-bin libopenblas0-pthread libgtest-dev cmake g++ make ccache python3-matplotlib"
+PACKAGES="libdeal.ii-dev libmumps-dev openmpi-bin libopenblas0-pthread libgtest-dev cmake g++ make ninja-build ccache python3-matplotlib"
 
 missing=""
 for p in $PACKAGES; do
@@ -28,13 +28,18 @@ BUILD=${ANISODWR_BUILD_DIR:-$ROOT/build}
 # clone; ANISODWR_UNITY=0 configures one object per source, for editing a few files).
 UNITY=ON
 [ "${ANISODWR_UNITY:-1}" = 0 ] && UNITY=OFF
+# New build directories use Ninja: it starts a test's sources while the library's last
+# unity batches still compile, where make waits for the whole library target (the
+# checked build of scripts/test.sh: 291 s against 344 s). An existing directory keeps
+# its generator. generator_for DIR prints the -G option for a new DIR.
+generator_for() { [ -f "$1/CMakeCache.txt" ] || echo "-GNinja"; }
 if [ ! -f "$BUILD/CMakeCache.txt" ]; then
   echo "== configuring (Release) in $BUILD"
-  cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=$UNITY \
-    -DCMAKE_UNITY_BUILD_BATCH_SIZE=7 >/dev/null
+  cmake -S "$ROOT" -B "$BUILD" $(generator_for "$BUILD") -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_UNITY_BUILD=$UNITY -DCMAKE_UNITY_BUILD_BATCH_SIZE=7 >/dev/null
 fi
 echo "== building (-j2)"
 start=$(date +%s)
-cmake --build "$BUILD" -j2 -- --no-print-directory | grep -E "error|warning|Linking" || true
+cmake --build "$BUILD" -j2 | grep -E "error|warning|Linking" || true
 test -x "$BUILD/app/anisodwr" || { echo "build failed" >&2; exit 1; }
 echo "== build: $(($(date +%s) - start)) s"

@@ -61,10 +61,9 @@ SANITIZE=ON
 if [ "${ANISODWR_SKIP_DEBUG:-0}" != 1 ]; then
   echo "== Debug build (deal.II's Debug library, sanitizers $SANITIZE) of the unit tests and anisodwr in $CHECKED"
   start=$(date +%s)
-  cmake -S "$ROOT" -B "$CHECKED" -DCMAKE_BUILD_TYPE=Debug -DANISODWR_SANITIZE=$SANITIZE \
-    -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=7 >/dev/null
-  cmake --build "$CHECKED" -j2 --target anisodwr_app $UNIT_TARGETS -- --no-print-directory \
-    | grep -E "error|warning" || true
+  cmake -S "$ROOT" -B "$CHECKED" $(generator_for "$CHECKED") -DCMAKE_BUILD_TYPE=Debug \
+    -DANISODWR_SANITIZE=$SANITIZE -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=7 >/dev/null
+  cmake --build "$CHECKED" -j2 --target anisodwr_app $UNIT_TARGETS | grep -E "error|warning" || true
   test -x "$CHECKED/app/anisodwr" || { echo "Debug build failed" >&2; exit 1; }
   echo "== Debug build: $(($(date +%s) - start)) s"
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1
