@@ -11,7 +11,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 # run_gtests DIR FILTER EXPECTED BINARY...: runs each gtest executable of DIR/test whole
 # (the cases matching FILTER), two at a time, and checks that EXPECTED cases ran. ctest
 # starts a process per case, and each process spends ~0.4 s (Release; ~0.9 s in the
-# checked build) loading deal.II's library and its dependencies: 112 checked cases took
+# checked build) loading deal.II's library and its dependencies: 112 checked cases (-O1) took
 # 83 s through ctest and 32 s so. `ctest -R NAME` still runs single cases.
 run_gtests() {
   local dir=$1 filter=$2 expected=$3 logs status=0 ran
@@ -53,7 +53,7 @@ UNIT_TARGETS="test_temporal_basis test_slab test_operators test_estimator test_p
 UNIT_TESTS="TemporalBasis|Slab|Exactness|Lifts|Restriction|RadauReconstruction|ExactGoal|Localization|Estimator|ShortVectors|HemkerMesh|Probes|Marking|Closure|CustomScene|SeparateInTime|StabilizationTerms|MemoryEstimate"
 
 # One build checks both ways: deal.II's Debug library (its Assert()s) and the sanitizers
-# (-O1 -g1 after the Debug flags, CMakeLists.txt). The library compiles as unity sources
+# (-O0 -g1 after the Debug flags, CMakeLists.txt). The library compiles as unity sources
 # (batches of 7 files): the deal.II headers are parsed once per batch, not once per file.
 CHECKED=${ANISODWR_DEBUG_BUILD_DIR:-$ROOT/build-debug}
 SANITIZE=ON
