@@ -29,9 +29,9 @@ BUILD=${ANISODWR_BUILD_DIR:-$ROOT/build}
 UNITY=ON
 [ "${ANISODWR_UNITY:-1}" = 0 ] && UNITY=OFF
 # New build directories use Ninja: it starts a test's sources while the library's last
-# unity batches still compile, where make waits for the whole library target (the
-# checked build of scripts/test.sh in a fresh clone: 308 s against 344 s). An existing directory keeps
-# its generator. generator_for DIR prints the -G option for a new DIR.
+# unity batches still compile, where make waits for the whole library target (the checked
+# build of scripts/test.sh in a fresh clone: 308 s against 344 s). An existing directory
+# keeps its generator. generator_for DIR prints the -G option for a new DIR.
 generator_for() { [ -f "$1/CMakeCache.txt" ] || echo "-GNinja"; }
 if [ ! -f "$BUILD/CMakeCache.txt" ]; then
   echo "== configuring (Release) in $BUILD"
