@@ -262,12 +262,16 @@ fi
 # (loop 3: the two goals' estimates 0.28 and 0.48 on loops 1-2 are not hidden by their
 # signed sum, 0.199 at loop 1). Each run: the last loop's measure is below the tolerance,
 # every earlier one is not; eta_abs is |eta_h,x| + |eta_h,y| + |eta_tau| (to the 8
-# digits of loops.csv) and >= |eta|. (The drift check is off here: tolerance_drift = 0.)
+# digits of loops.csv) and >= |eta|. (The drift check is off here: tolerance_drift = 0;
+# and the estimator integrates the data on its cell rule without the data quadrature
+# term, which change the estimates of these coarse meshes' loops, so that the loops are
+# the ones described.)
 for measure in eta parts goals; do
   d=$tmp/tolerance_$measure
   expect 0 "stopped: tolerance" -- run "$src/config/moving_hump_paper.json" --output "$d" \
     --set adaptivity.loops=12 --set adaptivity.tolerance=0.2 \
-    --set adaptivity.tolerance_measure=$measure --set adaptivity.tolerance_drift=0
+    --set adaptivity.tolerance_measure=$measure --set adaptivity.tolerance_drift=0 \
+    --set adaptivity.data_quadrature_error=false --set adaptivity.data_rule_copies=1
   if ! /usr/bin/python3 - "$d/loops.csv" "$measure" "$d/summary.json" <<'PY'; then
 import csv, json, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
@@ -330,15 +334,20 @@ else
 fi
 
 # a blow-up (slabs shorter than delta_K without the bound delta_K <= tau_n) stops the run
-# with exit 3, naming the loop and slab, and the loops before it stay on disk
+# with exit 3, naming the loop and slab, and the loops before it stay on disk (the loop
+# it blows up on depends on the meshes the estimator builds: 12 here, 29 s alone)
 d=$tmp/blowup
-expect_timeout=60
-expect 3 "loop 10, primal slab [0-9]*/210 .*grew to .*discretization.growth_limit" -- \
-  run "$src/config/moving_hump_paper.json" --output "$d" --set adaptivity.loops=12 \
+expect_timeout=90
+expect 3 "loop [0-9]*, primal slab [0-9]*/[0-9]* .*grew to .*discretization.growth_limit" -- \
+  run "$src/config/moving_hump_paper.json" --output "$d" --set adaptivity.loops=14 \
   --set discretization.supg_tau_factor=0 --set adaptivity.space_indicator=primal_residual \
   --set adaptivity.adjoint_delta0=0.1
-if [ "$(($(wc -l <"$d/loops.csv") - 1))" != 9 ] || ! grep -q '"status": "failed: loop 10' "$d/summary.json"; then
-  echo "FAIL: blow-up: loops.csv should keep loops 1-9 and summary.json say failed at loop 10"
+failed_loop=$(sed -n 's/.*"status": "failed: loop \([0-9]*\),.*/\1/p' "$d/summary.json")
+if [ -z "$failed_loop" ] || [ "$failed_loop" -lt 2 ] ||
+  [ "$(($(wc -l <"$d/loops.csv") - 1))" != "$((failed_loop - 1))" ]; then
+  echo "FAIL: blow-up: summary.json should say failed at a loop L >= 2 (got '$failed_loop') and loops.csv keep loops 1 to L-1"
   fail=1
+else
+  echo "ok: blow-up at loop $failed_loop; loops 1-$((failed_loop - 1)) kept"
 fi
 exit $fail

@@ -315,8 +315,9 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
 /// and Q2 adjoint in dG(1) on 3 slabs, the scene's two point goals at T.
 struct HumpProblem
 {
-  explicit HumpProblem(unsigned int refinements)
-      : scene(create_scene<2>(Parameters::from_overrides({"scene.name=moving_hump"})))
+  explicit HumpProblem(unsigned int refinements,
+                       const std::vector<std::string> &scene_keys = {"scene.name=moving_hump"})
+      : scene(create_scene<2>(Parameters::from_overrides(scene_keys)))
   {
     make_mesh(tria);
     tria.refine_global(refinements);
@@ -329,10 +330,10 @@ struct HumpProblem
     Z = march_adjoint(adjoint, mesh, basis, opq, assemble_goal_vectors(adjoint, goals),
                       MarchOptions{});
   }
-  Indicators<2> estimate(SpaceIndicator form) const
+  Indicators<2> estimate(SpaceIndicator form, const DataQuadrature &data = {}) const
   {
     return anisodwr::estimate(primal, adjoint, mesh, basis, U, Z, goals,
-                              TimeIndicator::average, nullptr, form);
+                              TimeIndicator::average, nullptr, form, data);
   }
 
   std::unique_ptr<Scene<2>> scene;
@@ -402,9 +403,11 @@ TEST(SpaceIndicator, PartsSumToEtaHInBothForms)
       std::abs(avg.eta_h_rho) + std::abs(avg.eta_h_rhostar) + std::abs(avg.eta_h_supg);
   ASSERT_GT(scale, 0.);
   EXPECT_GT(std::abs(avg.eta_h_rhostar), 1e-6 * scale); // the forms differ
-  EXPECT_NEAR(avg.eta_h_total(), avg.eta_h_rho + avg.eta_h_rhostar + avg.eta_h_supg,
+  EXPECT_NEAR(avg.eta_h_total(),
+              avg.eta_h_rho + avg.eta_h_rhostar + avg.eta_h_supg + avg.eta_h_quad,
               1e-12 * scale);
-  EXPECT_NEAR(pr.eta_h_total(), 2 * pr.eta_h_rho + pr.eta_h_supg, 1e-12 * scale);
+  EXPECT_NEAR(pr.eta_h_total(), 2 * pr.eta_h_rho + pr.eta_h_supg + pr.eta_h_quad,
+              1e-12 * scale);
   EXPECT_EQ(pr.eta_h_rhostar, 0.);
   EXPECT_NEAR(pr.eta_h_rho, avg.eta_h_rho, 1e-12 * scale);
   EXPECT_NEAR(pr.eta_h_supg, avg.eta_h_supg, 1e-12 * scale);
@@ -423,6 +426,50 @@ double cell_scale(const Indicators<2> &a)
   for (const auto &c : a.eta_h_cell)
     scale += std::abs(c[0]) + std::abs(c[1]);
   return scale;
+}
+
+// The data quadrature term D(R_h z) = (f, w + delta b.grad w) and (u_0, ...) on the
+// estimator's data rule minus the same on the primal's QGauss(p+2) (doc/method.md §6):
+// - zero (to round-off) where QGauss(p+2) integrates the data exactly: u = x^2 y (1 + t)
+//   with b = (1, 1), eps = 0.01, so f and u_0 are polynomials of degree <= 2 per
+//   direction (SUPG on, Q1 primal, which does not contain u);
+// - for the moving hump's front non-zero, and with it off exactly zero while every other
+//   part stays the same: eta_h differs by the term itself, cell sums included;
+// - the finer data rule moves it towards a limit: copies 4 and 8 agree better than 1
+//   and 8.
+TEST(Estimator, DataQuadratureTermIsTheRuleDifference)
+{
+  HumpProblem poly(1, {"scene.name=custom", "scene.epsilon=0.01", "scene.end_time=0.5",
+                       "scene.convection=1; 1", "scene.exact_solution=x^2*y*(1+t)",
+                       "scene.rhs=x^2*y - 0.02*y*(1+t) + (1+t)*(2*x*y + x^2)",
+                       "scene.initial_value=x^2*y",
+                       "scene.dirichlet=0, 1, 2, 3: x^2*y*(1+t)",
+                       "scene.goals=mid = point 0.5, 0.5"});
+  const auto p = poly.estimate(SpaceIndicator::primal_residual);
+  ASSERT_GT(std::abs(p.eta_h_rho), 1e-8);
+  EXPECT_LE(std::abs(p.eta_h_quad), 1e-12 * cell_scale(p));
+
+  const HumpProblem hump(1);
+  const auto on = hump.estimate(SpaceIndicator::primal_residual);
+  const auto off = hump.estimate(SpaceIndicator::primal_residual, {2, false});
+  const double scale = cell_scale(off);
+  ASSERT_GT(scale, 0.);
+  EXPECT_GT(std::abs(on.eta_h_quad), 1e-6 * scale);
+  EXPECT_EQ(off.eta_h_quad, 0.);
+  EXPECT_NEAR(on.eta_h_total() - off.eta_h_total(), on.eta_h_quad, 1e-12 * scale);
+  EXPECT_NEAR(on.eta_h_rho, off.eta_h_rho, 1e-12 * scale);
+  EXPECT_NEAR(on.eta_h_supg, off.eta_h_supg, 1e-12 * scale);
+  EXPECT_NEAR(on.eta_tau, off.eta_tau, 1e-12 * scale);
+  double cells = 0;
+  for (std::size_t c = 0; c < on.eta_h_cell.size(); ++c)
+    cells += on.eta_h_cell[c][0] + on.eta_h_cell[c][1] - off.eta_h_cell[c][0] -
+             off.eta_h_cell[c][1];
+  EXPECT_NEAR(cells, on.eta_h_quad, 1e-12 * scale);
+
+  const double d1 = hump.estimate(SpaceIndicator::primal_residual, {1, true}).eta_h_quad,
+               d4 = hump.estimate(SpaceIndicator::primal_residual, {4, true}).eta_h_quad,
+               d8 = hump.estimate(SpaceIndicator::primal_residual, {8, true}).eta_h_quad;
+  EXPECT_LT(std::abs(d4 - d8), std::abs(d1 - d8));
 }
 
 /// b equals a cell by cell, direction by direction, slab by slab and in every total

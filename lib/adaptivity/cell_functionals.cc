@@ -53,7 +53,8 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
         lap += c(l) * trace(fv_p.shape_hessian(l, q));
       }
       const auto cf = coefficients(q, t);
-      const double R = weak_form::residual(cf, load(q, t, a), ut, uh, grad, lap);
+      const double f = f_at[m][q] = load(q, t, a);
+      const double R = weak_form::residual(cf, f, ut, uh, grad, lap);
       const double jx = fv_p.JxW(q) * wt;
       for (unsigned int l = 0; l < nw; ++l)
       {
@@ -68,6 +69,72 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
     add_temporal_jump_by_matrices(delta, Un, Uprev, rho, supg);
   else
     add_temporal_jump(t0, delta, Un, Uprev, rho, supg);
+}
+
+template <int dim>
+void CellKernel<dim>::load_quadrature_error(double t0, double tau, bool first_slab,
+                                            SlabFunctional &D) const
+{
+  const unsigned int nw = fe_w.n_dofs_per_cell();
+  D.reset(g.size(), nw);
+  const double delta = primal.bounded_delta(delta_h, tau);
+  // out += sign (data, w + delta b.grad w) on the rule of fv (W's shapes; the weights
+  // from geo); data(q) and b(q) at its points
+  const auto add = [&](const FEValues<dim> &fv, const FEValues<dim> &geo, double sign,
+                       const auto &data, const auto &b, Vector<double> &out)
+  {
+    for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
+    {
+      const double jd = sign * geo.JxW(q) * data(q);
+      if (jd == 0.)
+        continue;
+      const Tensor<1, dim> bq = b(q);
+      for (unsigned int l = 0; l < nw; ++l)
+        out(l) += jd * (fv.shape_value(l, q) +
+                        weak_form::supg_test(delta, bq, fv.shape_grad(l, q)));
+    }
+  };
+  const auto b_lo = [&](double t)
+  { return [&, t](unsigned int q) { return scene.convection(fv_lo.quadrature_point(q), t); }; };
+  for (unsigned int m = 0; m < g.size(); ++m)
+  {
+    const double t = t0 + g[m] * tau, wt = tau * omega[m];
+    if (separable_load) // the rules' vectors, formed once per cell
+    {
+      const std::vector<double> &a = load_factors_at(t);
+      for (unsigned int j = 0; j < a.size(); ++j)
+      {
+        sv::add(D.val[m], wt * a[j], load_rho[j]);
+        sv::add(D.val[m], -wt * a[j], lo_rho[j]);
+        sv::add(D.val[m], wt * delta * a[j], load_supg[j]);
+        sv::add(D.val[m], -wt * delta * a[j], lo_supg[j]);
+      }
+      continue;
+    }
+    add(
+        fv_w, fv_p, wt, [&](unsigned int q) { return f_at[m][q]; },
+        [&](unsigned int q) { return coefficients(q, t).b; }, D.val[m]);
+    add(
+        fv_lo, fv_lo, -wt,
+        [&](unsigned int q) { return scene.rhs(fv_lo.quadrature_point(q), t); },
+        b_lo(t), D.val[m]);
+  }
+  if (!first_slab)
+    return;
+  // u_0 on the rule the primal residual's jump takes it (fv_load with coefficients
+  // constant in time, else the cell rule)
+  const auto u0_on = [&](const FEValues<dim> &fv)
+  { return [&](unsigned int q) { return scene.initial_value(fv.quadrature_point(q)); }; };
+  if (constant_coefficients)
+    add(
+        fv_load, fv_load, 1., u0_on(fv_load),
+        [&](unsigned int q) { return scene.convection(fv_load.quadrature_point(q), t0); },
+        D.jump);
+  else
+    add(
+        fv_w, fv_p, 1., u0_on(fv_p), [&](unsigned int q) { return coefficients(q, t0).b; },
+        D.jump);
+  add(fv_lo, fv_lo, -1., u0_on(fv_lo), b_lo(t0), D.jump);
 }
 
 template <int dim>
@@ -279,6 +346,8 @@ template void CellKernel<2>::adjoint_functional(double, double,
 template bool
 CellKernel<2>::dirichlet_data_functionals(double, double, const Vector<double> &,
                                           std::array<SlabFunctional, 2> &) const;
+template void CellKernel<2>::load_quadrature_error(double, double, bool,
+                                                   SlabFunctional &) const;
 template void CellKernel<2>::goal_functional(double, const Vector<double> &,
                                              SlabFunctional &) const;
 } // namespace anisodwr

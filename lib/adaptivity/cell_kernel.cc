@@ -4,13 +4,17 @@
 
 #include "time/slab_vector.h"
 
+#include <algorithm>
+
+
 namespace anisodwr
 {
 using namespace dealii;
 
+
 template <int dim>
 CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
-                            const TemporalBasis &basis)
+                            const TemporalBasis &basis, unsigned int data_copies)
     : primal(primal), scene(primal.scene), fe_p(primal.finite_element()), fe_w(fe_w),
       basis(basis), quad(fe_w.degree + 2), fquad(fe_w.degree + 2),
       fv_p(primal.mapping(), fe_p, quad,
@@ -18,6 +22,14 @@ CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
                update_JxW_values),
       fv_w(primal.mapping(), fe_w, quad,
            update_values | update_gradients | update_hessians),
+      quad_primal(fe_p.degree + 2),
+      fv_lo(primal.mapping(), fe_w, quad_primal,
+            update_values | update_gradients | update_quadrature_points |
+                update_JxW_values),
+      quad_load(QGauss<1>(fe_w.degree + 2), std::max(1u, data_copies)),
+      fv_load(primal.mapping(), fe_w, quad_load,
+            update_values | update_gradients | update_quadrature_points |
+                update_JxW_values),
       ff_p(primal.mapping(), fe_p, fquad,
            update_values | update_gradients | update_normal_vectors | update_quadrature_points |
                update_JxW_values),
@@ -33,6 +45,7 @@ CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
   gauss_rule(basis.n_dofs() + 1, g, omega);
   separable_load = scene.separable_rhs(load_terms);
   load_at_q.assign(load_terms.size(), std::vector<double>(quad.size()));
+  f_at.assign(g.size(), std::vector<double>(quad.size()));
   for (double s : g)
   {
     ell.push_back(basis.values(s));
@@ -71,9 +84,12 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
   fv_w.reinit(typename Triangulation<dim>::cell_iterator(cell));
   delta_h = primal.unbounded_delta(cell);
   cw = primal.cell_diffusion(cell);
-  for (unsigned int j = 0; j < load_terms.size(); ++j)
-    for (unsigned int q = 0; q < quad.size(); ++q)
-      load_at_q[j][q] = load_terms[j].g(fv_p.quadrature_point(q));
+  fv_lo.reinit(typename Triangulation<dim>::cell_iterator(cell));
+  fv_load.reinit(typename Triangulation<dim>::cell_iterator(cell));
+  if (!constant_coefficients) // (a separable load has constant coefficients)
+    for (unsigned int j = 0; j < load_terms.size(); ++j)
+      for (unsigned int q = 0; q < quad.size(); ++q)
+        load_at_q[j][q] = load_terms[j].g(fv_p.quadrature_point(q));
   if (constant_coefficients)
   {
     coefficients_at_q.clear();
@@ -224,7 +240,7 @@ void CellKernel<dim>::combine(const Vector<double> &U,
 }
 
 template CellKernel<2>::CellKernel(const Space<2> &, const FE_Q<2> &,
-                                   const TemporalBasis &);
+                                   const TemporalBasis &, unsigned int);
 template void CellKernel<2>::reinit(const cell_iterator &);
 template const std::vector<double> &CellKernel<2>::load_factors_at(double) const;
 template double CellKernel<2>::load(unsigned int, double,

@@ -53,8 +53,10 @@ template <int dim> class CellKernel
 public:
   using cell_iterator = typename dealii::DoFHandler<dim>::active_cell_iterator;
 
+  /// data_copies: the data rule's copies of QGauss(deg W + 2) per direction
+  /// (DataQuadrature::copies)
   CellKernel(const Space<dim> &primal, const dealii::FE_Q<dim> &fe_w,
-             const TemporalBasis &basis);
+             const TemporalBasis &basis, unsigned int data_copies);
 
   unsigned int n_points() const { return g.size(); }
   double point(unsigned int m) const { return g[m]; }
@@ -88,6 +90,15 @@ public:
   /// without Dirichlet faces.
   bool dirichlet_data_functionals(double t0, double tau, const dealii::Vector<double> &Un,
                                   std::array<SlabFunctional, dim> &data) const;
+
+  /// The primal's quadrature error in its data on the slab, as a functional of the weight
+  /// w: the primal integrates f and u_0 by QGauss(p+2), this kernel by its finer rule,
+  /// and the error identity's rho(u)(z_h) - S(u)(z_h) is their difference, not zero
+  /// (doc/method.md §6). val[m]: wt_m (f(t_m), w + delta b.grad w) on the kernel's rule
+  /// minus the same on the primal's; jump (first slab only): (u_0, w + delta b.grad w)
+  /// likewise. Call after primal_functionals of the same slab (it reuses f's values).
+  void load_quadrature_error(double t0, double tau, bool first_slab,
+                             SlabFunctional &D) const;
 
   /// J'(v) on this cell: the part over I at the Gauss points, the end part at T.
   void goal_functional(double tau, const dealii::Vector<double> &jt,
@@ -149,6 +160,14 @@ private:
   dealii::QGauss<dim> quad;
   dealii::QGauss<dim - 1> fquad;
   dealii::FEValues<dim> fv_p, fv_w;
+  /// W on the primal's own cell rule QGauss(p+2) (load_quadrature_error)
+  dealii::QGauss<dim> quad_primal;
+  dealii::FEValues<dim> fv_lo;
+  /// W on the rule for the data f and u_0 where they are integrated once per cell (a
+  /// separable load, u_0 with coefficients constant in time): QGauss(deg W + 2) iterated
+  /// load_copies times per direction
+  dealii::QIterated<dim> quad_load;
+  dealii::FEValues<dim> fv_load;
   dealii::FEFaceValues<dim> ff_p, ff_w;
   dealii::FESubfaceValues<dim> fs_p, fs_w;
   dealii::FEFaceValues<dim> fn_p;
@@ -177,6 +196,8 @@ private:
   /// (g_j, w) and (g_j, b.grad w) per term j.
   std::array<dealii::FullMatrix<double>, 5> primal_matrices;
   std::vector<dealii::Vector<double>> load_rho, load_supg;
+  /// the same on the primal's rule (load_quadrature_error)
+  std::vector<dealii::Vector<double>> lo_rho, lo_supg;
   /// the faces' terms from the cell's own side: -eps (d_n u, w), halved on interior faces
   dealii::FullMatrix<double> own_flux;
   /// rho and S += the cell terms at Gauss point m through node_terms
@@ -204,16 +225,19 @@ private:
   bool separable_load = false;
   std::vector<LoadTerm<dim>> load_terms;
   std::vector<std::vector<double>> load_at_q; // [j][q]
+  /// f at [Gauss point m][quadrature point q] as primal_functionals evaluated it
+  mutable std::vector<std::vector<double>> f_at;
   /// a_j(t) by t: the same few temporal Gauss points recur on every cell
   mutable std::unordered_map<double, std::vector<double>> load_factors;
   const std::vector<double> &load_factors_at(double t) const;
   /// f at quadrature point q and time t, with a[j] = a_j(t) (separable_load)
   double load(unsigned int q, double t, const std::vector<double> &a) const;
   void build_cell_matrices();
-  /// The loads' rho and SUPG vectors of build_cell_matrices from its weighted factor
-  /// tables dphi (JxW phi_l) and ds (JxW s_l): load_rho, load_supg.
-  void build_load_vectors(const dealii::FullMatrix<double> &dphi,
-                          const dealii::FullMatrix<double> &ds);
+  /// A separable load's vectors (g_j, w_l) and (g_j, b.grad w_l) per term j on the rule of
+  /// fv (W's shapes, the weights and points).
+  void load_vectors_on(const dealii::FEValues<dim> &fv,
+                       std::vector<dealii::Vector<double>> &rho,
+                       std::vector<dealii::Vector<double>> &supg) const;
 };
 
 /// W-local coefficients of temporal node k of an interleaved slab vector.

@@ -88,22 +88,34 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
     dpg.mTmult(adj_matrices[4], pg);
     dpg.mTmult(primal_matrices[4], gu);
   }
-  build_load_vectors(dphi, ds);
+  if (separable_load)
+  {
+    load_vectors_on(fv_load, load_rho, load_supg);
+    load_vectors_on(fv_lo, lo_rho, lo_supg);
+  }
 }
 
 template <int dim>
-void CellKernel<dim>::build_load_vectors(const FullMatrix<double> &dphi,
-                                         const FullMatrix<double> &ds)
+void CellKernel<dim>::load_vectors_on(const FEValues<dim> &fv,
+                                      std::vector<Vector<double>> &rho,
+                                      std::vector<Vector<double>> &supg) const
 {
-  const unsigned int nw = dphi.m(), nq = dphi.n();
-  load_rho.assign(load_terms.size(), Vector<double>(nw));
-  load_supg.assign(load_terms.size(), Vector<double>(nw));
-  Vector<double> g(nq);
-  for (unsigned int j = 0; j < load_terms.size(); ++j)
+  const unsigned int nw = fe_w.n_dofs_per_cell();
+  rho.assign(load_terms.size(), Vector<double>(nw));
+  supg.assign(load_terms.size(), Vector<double>(nw));
+  for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
   {
-    std::copy(load_at_q[j].begin(), load_at_q[j].end(), g.begin());
-    dphi.vmult(load_rho[j], g);
-    ds.vmult(load_supg[j], g);
+    const Point<dim> &x = fv.quadrature_point(q);
+    const Tensor<1, dim> b = scene.convection(x, 0.);
+    for (unsigned int j = 0; j < load_terms.size(); ++j)
+    {
+      const double jg = fv.JxW(q) * load_terms[j].g(x);
+      for (unsigned int l = 0; l < nw; ++l)
+      {
+        rho[j](l) += jg * fv.shape_value(l, q);
+        supg[j](l) += jg * weak_form::supg_test(1., b, fv.shape_grad(l, q));
+      }
+    }
   }
 }
 
@@ -137,7 +149,8 @@ void CellKernel<dim>::add_cell_terms_by_matrices(unsigned int m, double t, doubl
   }
   for (unsigned int q = 0; q < quad.size(); ++q)
   {
-    const double jf = fv_p.JxW(q) * wt * scene.rhs(fv_p.quadrature_point(q), t);
+    const double f = f_at[m][q] = scene.rhs(fv_p.quadrature_point(q), t);
+    const double jf = fv_p.JxW(q) * wt * f;
     for (unsigned int l = 0; l < nw; ++l)
     {
       rho.val[m](l) += jf * fv_w.shape_value(l, q);
@@ -164,22 +177,24 @@ void CellKernel<dim>::add_temporal_jump_by_matrices(double delta,
       d(l) -= (*Uprev)(SlabLayout{basis.n_dofs()}.last(idx[l]));
   sv::add_vmult(rho.jump, 1., primal_matrices[1], d);
   sv::add_vmult(supg.jump, delta, primal_matrices[3], d);
-  if (!Uprev)
-    for (unsigned int q = 0; q < quad.size(); ++q)
+  if (!Uprev) // u_0 on the data rule (fv_load)
+    for (unsigned int q = 0; q < fv_load.n_quadrature_points; ++q)
     {
-      const double ju = fv_p.JxW(q) * scene.initial_value(fv_p.quadrature_point(q));
+      const Point<dim> &x = fv_load.quadrature_point(q);
+      const double ju = fv_load.JxW(q) * scene.initial_value(x);
+      const Tensor<1, dim> b = scene.convection(x, 0.);
       for (unsigned int l = 0; l < nw; ++l)
       {
-        rho.jump(l) += ju * fv_w.shape_value(l, q);
-        supg.jump(l) -= ju * weak_form::supg_test(delta, coefficients_at_q[q].b,
-                                                  fv_w.shape_grad(l, q));
+        rho.jump(l) += ju * fv_load.shape_value(l, q);
+        supg.jump(l) -= ju * weak_form::supg_test(delta, b, fv_load.shape_grad(l, q));
       }
     }
 }
 
 template void CellKernel<2>::build_cell_matrices();
-template void CellKernel<2>::build_load_vectors(const FullMatrix<double> &,
-                                                const FullMatrix<double> &);
+template void CellKernel<2>::load_vectors_on(const FEValues<2> &,
+                                             std::vector<Vector<double>> &,
+                                             std::vector<Vector<double>> &) const;
 template void CellKernel<2>::add_cell_terms_by_matrices(unsigned int, double, double,
                                                         double, double, SlabFunctional &,
                                                         SlabFunctional &) const;

@@ -43,7 +43,8 @@ void allreduce_chunks(std::vector<Indicators<dim>> &sums, Indicators<dim> &ind)
         visit(e);
       for (double *e :
            {&s.eta_tau, &s.eta_tau_rho, &s.eta_tau_rhostar, &s.eta_h_rho,
-            &s.eta_h_rhostar, &s.eta_h_supg, &s.eta_h_split_rest, &s.eta_h_data})
+            &s.eta_h_rhostar, &s.eta_h_supg, &s.eta_h_split_rest, &s.eta_h_data,
+            &s.eta_h_quad})
         visit(*e);
       double no_lift = s.no_lift;
       visit(no_lift);
@@ -125,7 +126,7 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
          const TemporalBasis &basis, const std::vector<Vector<double>> &U,
          const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
          const TimeIndicator time_indicator, const HigherOrderPrimal *hi,
-         const SpaceIndicator space_indicator)
+         const SpaceIndicator space_indicator, const DataQuadrature &data)
 {
   if ((time_indicator == TimeIndicator::higher_order) != (hi != nullptr))
     throw std::invalid_argument("estimate: the higher_order time indicator needs the "
@@ -171,7 +172,8 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       [&]()
       {
         return IndicatorAssembly<dim>(primal, adjoint, mesh, basis, U, Z, goals,
-                                      time_indicator, hi, space_indicator, zT, u0);
+                                      time_indicator, hi, space_indicator, zT, u0,
+                                      data);
       },
       ind);
   for (const auto &s : sums)
@@ -188,6 +190,7 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
     ind.eta_h_supg += s.eta_h_supg;
     ind.eta_h_split_rest += s.eta_h_split_rest;
     ind.eta_h_data += s.eta_h_data;
+    ind.eta_h_quad += s.eta_h_quad;
     ind.no_lift += s.no_lift;
   }
   return ind;
@@ -198,5 +201,6 @@ template Indicators<2> estimate<2>(const Space<2> &, const Space<2> &, const Tim
                                    const std::vector<Vector<double>> &,
                                    const std::vector<Vector<double>> &,
                                    const std::vector<GoalSpec> &, TimeIndicator,
-                                   const HigherOrderPrimal *, SpaceIndicator);
+                                   const HigherOrderPrimal *, SpaceIndicator,
+                                   const DataQuadrature &);
 } // namespace anisodwr

@@ -4,7 +4,9 @@
 //
 //   eta_tau   = 1/2 rho(u)(E z - z) + 1/2 rho*(u,z)(E u - u)
 //   eta_h,i   = 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - u)
-//             + omega_i^K S(u)(R_h z) + 1/2 S'(u)(I_2h,i u - u, R_h z)
+//             + omega_i^K (S(u)(R_h z) + D(R_h z)) + 1/2 S'(u)(I_2h,i u - u, R_h z)
+//
+// D: the primal's quadrature error in its data f and u_0 (DataQuadrature below).
 //
 // The SUPG consistency term departs from the seed paper's 1/2 S(u)(R_i z): with
 // z_h = R_h z in the primal space both J(e) = rho(u)(z - z_h) + S(u)(z_h) and
@@ -64,6 +66,12 @@ template <int dim> struct Indicators
   /// the Dirichlet data's share of eta_h, -int_I int_{Gamma_D} eps (g - u) d_n z
   /// (included in eta_h; zero where u_h takes g exactly)
   double eta_h_data = 0;
+  /// the primal's quadrature error in f and u_0: (f, R_h z + delta b.grad R_h z) and
+  /// (u_0, ...) on the estimator's data rule minus the same on the primal's
+  /// QGauss(p+2), the term rho(u)(R_h z) - S(u)(R_h z) of the error identity that the
+  /// primal's own rule sets to zero (included in eta_h; 0 with
+  /// DataQuadrature::error_term false)
+  double eta_h_quad = 0;
   /// (cell, direction) pairs without a directional lift (no adjoint half there)
   unsigned int no_lift = 0;
   double eta_h_total() const
@@ -105,8 +113,20 @@ void add_scaled(Indicators<dim> &sum, double w, const Indicators<dim> &x)
   sum.eta_h_supg += w * x.eta_h_supg;
   sum.eta_h_split_rest += w * x.eta_h_split_rest;
   sum.eta_h_data += w * x.eta_h_data;
+  sum.eta_h_quad += w * x.eta_h_quad;
   sum.no_lift = x.no_lift;
 }
+
+/// How the estimator integrates the data f and u_0 (adaptivity.data_rule_copies and
+/// adaptivity.data_quadrature_error, doc/method.md §6).
+struct DataQuadrature
+{
+  /// f (where it is separable in x and t) and u_0 (coefficients constant in time) on
+  /// QGauss(deg W + 2) iterated this many times per direction, once per cell
+  unsigned int copies = 2;
+  /// add the primal's quadrature error in f and u_0, weighted by R_h z, to eta_h
+  bool error_term = true;
+};
 
 /// The primal solved once more in dG(r+1) (basis.degree() = r+1) on the same slabs and
 /// spatial space (TimeIndicator::higher_order).
@@ -125,7 +145,8 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
          const std::vector<dealii::Vector<double>> &Z, const std::vector<GoalSpec> &goals,
          TimeIndicator time_indicator = TimeIndicator::average,
          const HigherOrderPrimal *higher_order = nullptr,
-         SpaceIndicator space_indicator = SpaceIndicator::average);
+         SpaceIndicator space_indicator = SpaceIndicator::average,
+         const DataQuadrature &data = {});
 
 /// The localized forms summed over all cells, one value per slab, for given global
 /// functions (for the localization tests). u in `primal`'s space; the weights w, y, v

@@ -25,7 +25,8 @@ public:
                     const std::vector<dealii::Vector<double>> &Z,
                     const std::vector<GoalSpec> &goals, TimeIndicator time_indicator,
                     const HigherOrderPrimal *hi, SpaceIndicator space_indicator,
-                    const dealii::Vector<double> &zT, const dealii::Vector<double> &u0);
+                    const dealii::Vector<double> &zT, const dealii::Vector<double> &u0,
+                    const DataQuadrature &data);
 
   /// Adds the cell's eta_h,i and eta_tau (all slabs) to cells.eta_h_cell and
   /// cells.eta_tau_cell, and its contributions to the sums (per slab, per direction,
@@ -33,9 +34,10 @@ public:
   void add_cell(const cell_iterator &cell, Indicators<dim> &cells, Indicators<dim> &sums);
 
 private:
-  /// The slab's terms for the cell; supg_part and lift_size accumulate over the slabs.
+  /// The slab's terms for the cell; supg_part, quad_part and lift_size accumulate over
+  /// the slabs.
   void add_slab(unsigned int n, unsigned int c, Indicators<dim> &cells,
-                Indicators<dim> &ind, double &supg_part,
+                Indicators<dim> &ind, double &supg_part, double &quad_part,
                 std::array<double, dim> &lift_size);
   /// W-local z and u at the temporal nodes of slab n, z(t_n^+) and u(t_{n-1}^-).
   void gather_slab(unsigned int n);
@@ -58,6 +60,7 @@ private:
   const TimeIndicator time_indicator;
   const HigherOrderPrimal *const hi;
   const SpaceIndicator space_indicator;
+  const bool data_error; // DataQuadrature::error_term
   const dealii::Triangulation<dim> &tria;
   const SpatialOperators<dim> ops;
   const dealii::FE_Q<dim> &fe_w;
@@ -85,7 +88,7 @@ private:
   std::vector<dealii::types::global_dof_index> idx_q;
   /// the slab's functionals on the cell: rho(u)(.) and S(u)(.) of u_h; A'(.)(R_h z) and
   /// S'(.)(R_h z), A'(.)(z) (the adjoint residual's forms); J'(.) over I
-  SlabFunctional rho_u, supg_u, adjoint_form_Rhz, supg_derivative_Rhz, adjoint_form_z,
+  SlabFunctional rho_u, supg_u, load_error, adjoint_form_Rhz, supg_derivative_Rhz, adjoint_form_z,
       goal_derivative;
   std::array<SlabFunctional, dim> data; // the Dirichlet data's share, per direction
   /// W-local z, u and I_2h,i u - u at the temporal nodes of the slab

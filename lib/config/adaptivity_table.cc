@@ -160,6 +160,18 @@ std::vector<Entry> adaptivity_entries()
        "halved along b, beside the marking (loops.csv `bound_cuts`). SUPG oscillates on "
        "such cells where the solution changes along the flow (Hemker: the top of the "
        "circle, doc/results.md). 0: off; no effect without bounds."},
+      {"adaptivity", "data_rule_copies", "2", m(&S::data_rule_copies), integer(1, 8),
+       "The estimator integrates f (where the scene's f is separable in x and t, as the "
+       "built-in scenes' are) and u_0 (coefficients constant in time) by QGauss(deg W + 2) "
+       "iterated this many times per direction (once per cell, so it costs little); other "
+       "loads on QGauss(deg W + 2). The primal integrates its data by QGauss(p + 2): its "
+       "quadrature error is part of the error the estimate must see (doc/method.md §6)."},
+      {"adaptivity", "data_quadrature_error", "true", m(&S::data_quadrature_error), boolean,
+       "eta_h carries the primal's quadrature error in f and u_0: (f, R_h z + delta b.grad "
+       "R_h z) on the estimator's rule minus the same on the primal's QGauss(p + 2) "
+       "(loops.csv eta_h_quad). Without it the estimate misses errors of the primal's load "
+       "where f varies within a cell (the moving hump's front: doc/results.md, 'Error "
+       "control without tuning')."},
   };
 }
 } // namespace anisodwr::config::table

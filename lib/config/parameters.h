@@ -131,6 +131,10 @@ struct AdaptivitySection : MarkingOptions
   /// cells leaving the bounds by more than this fraction of their range are halved
   /// along b (cells_out_of_bounds); 0: off
   double bound_refinement = 0.;
+  /// the estimator's rule for f and u_0: QGauss(deg W + 2) iterated this many times
+  unsigned int data_rule_copies = 2;
+  /// eta_h carries the primal's quadrature error in f and u_0
+  bool data_quadrature_error = true;
 };
 
 struct OutputSection

@@ -16,6 +16,14 @@
 
 namespace anisodwr::dwr_loop
 {
+namespace
+{
+DataQuadrature data_quadrature(const AdaptivitySection &a)
+{
+  return {a.data_rule_copies, a.data_quadrature_error};
+}
+} // namespace
+
 SlabSolverOptions AdaptiveLoop::march_solver_options(unsigned int loop,
                                                      const std::string &problem,
                                                      bool concurrent) const
@@ -98,7 +106,8 @@ void AdaptiveLoop::estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2
   }
   Timer t;
   ind = estimate(primal, adjoint, mesh, basis, U, adj.Z[0], goals,
-                 prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator);
+                 prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator,
+                 data_quadrature(prm.adaptivity));
   row.t_estimate = t.wall_time();
 }
 
@@ -142,7 +151,8 @@ Indicators<2> AdaptiveLoop::goal_estimate(const Space<2> &primal, const Space<2>
                                           const HigherOrderPrimal *hi) const
 {
   return estimate(primal, adjoint, mesh, basis, U, Z, {unweighted(goal)},
-                  prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator);
+                  prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator,
+                 data_quadrature(prm.adaptivity));
 }
 
 void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,

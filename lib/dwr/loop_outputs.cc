@@ -80,6 +80,7 @@ void copy_indicators(const Indicators<2> &ind, LoopRow &row)
   row.eta_h_supg = ind.eta_h_supg;
   row.eta_h_split_rest = ind.eta_h_split_rest;
   row.eta_h_data = ind.eta_h_data;
+  row.eta_h_quad = ind.eta_h_quad;
   row.no_lift = ind.no_lift;
 }
 

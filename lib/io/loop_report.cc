@@ -67,7 +67,8 @@ std::vector<double> LoopRow::all_values() const
             double(marking[1]), double(marking[2]), double(marking[3]),
             double(marking[4]), mem_estimate, eta_h_rho, eta_h_rhostar, eta_h_supg,
             no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest,
-            eta_parts_abs(), hanging_gap, eta_h_data, double(bound_cuts), eta_drift});
+            eta_parts_abs(), hanging_gap, eta_h_data, double(bound_cuts), eta_drift,
+            eta_h_quad});
   return v;
 }
 
@@ -147,7 +148,8 @@ double LoopRow::eta_time_abs() const
 /// the adjoint marched concurrently (1/0), the remainder of the directional split and
 /// LoopRow::eta_parts_abs(), the mesh's hanging-node mismatch (max_hanging_gap) and the
 /// Dirichlet data's share of eta_h (Indicators::eta_h_data), the cells that
-/// adaptivity.bound_refinement cut and the corrected goal values' drift (eta_drift).
+/// adaptivity.bound_refinement cut, the corrected goal values' drift (eta_drift) and
+/// the primal's data quadrature error in eta_h (Indicators::eta_h_quad).
 std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names)
 {
   auto c = columns;
@@ -160,7 +162,8 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
             "marked_x", "marked_y", "marked_xy", "closure", "memory_estimate_mb",
             "eta_h_rho", "eta_h_rhostar", "eta_h_supg", "no_lift", "lu_primal_mb",
             "lu_adjoint_mb", "concurrent", "eta_h_split_rest", "eta_abs",
-            "hanging_gap", "eta_h_data", "bound_cuts", "eta_drift"});
+            "hanging_gap", "eta_h_data", "bound_cuts", "eta_drift",
+            "eta_h_quad"});
   return c;
 }
 

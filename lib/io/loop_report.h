@@ -32,6 +32,7 @@ struct LoopRow
   double eta_h_rho = 0, eta_h_rhostar = 0, eta_h_supg = 0, no_lift = 0;
   double eta_h_split_rest = 0; ///< Indicators::eta_h_split_rest
   double eta_h_data = 0;       ///< Indicators::eta_h_data
+  double eta_h_quad = 0;       ///< Indicators::eta_h_quad
   /// max_hanging_gap of the loop's mesh (adaptivity/refinement.h)
   double hanging_gap = 0;
   /// adaptivity.measure_time_error: J_w(u_h) - J_w(u_tau h) on this spatial mesh,
