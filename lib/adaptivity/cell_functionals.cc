@@ -40,7 +40,7 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
     }
     combine(Un, idx, ell[m], 1., c);
     combine(Un, idx, dell[m], 1. / tau, ct);
-    const std::vector<double> &a = load_factors_at(t);
+    // (coefficients that depend on t: the load is not separable, Scene::separable_rhs)
     for (unsigned int q = 0; q < nq; ++q)
     {
       double uh = 0, ut = 0, lap = 0;
@@ -53,7 +53,7 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
         lap += c(l) * trace(fv_p.shape_hessian(l, q));
       }
       const auto cf = coefficients(q, t);
-      const double f = f_at[m][q] = load(q, t, a);
+      const double f = f_at[m][q] = scene.rhs(fv_p.quadrature_point(q), t);
       const double R = weak_form::residual(cf, f, ut, uh, grad, lap);
       const double jx = fv_p.JxW(q) * wt;
       for (unsigned int l = 0; l < nw; ++l)

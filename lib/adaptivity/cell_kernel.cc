@@ -44,7 +44,6 @@ CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
 {
   gauss_rule(basis.n_dofs() + 1, g, omega);
   separable_load = scene.separable_rhs(load_terms);
-  load_at_q.assign(load_terms.size(), std::vector<double>(quad.size()));
   f_at.assign(g.size(), std::vector<double>(quad.size()));
   for (double s : g)
   {
@@ -54,17 +53,6 @@ CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
       d[k] = basis.derivative(k, s);
     dell.push_back(d);
   }
-}
-
-template <int dim>
-double CellKernel<dim>::load(unsigned int q, double t, const std::vector<double> &a) const
-{
-  if (!separable_load)
-    return scene.rhs(fv_p.quadrature_point(q), t);
-  double f = 0;
-  for (unsigned int j = 0; j < a.size(); ++j)
-    f += a[j] * load_at_q[j][q];
-  return f;
 }
 
 template <int dim>
@@ -86,10 +74,6 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
   cw = primal.cell_diffusion(cell);
   fv_lo.reinit(typename Triangulation<dim>::cell_iterator(cell));
   fv_load.reinit(typename Triangulation<dim>::cell_iterator(cell));
-  if (!constant_coefficients) // (a separable load has constant coefficients)
-    for (unsigned int j = 0; j < load_terms.size(); ++j)
-      for (unsigned int q = 0; q < quad.size(); ++q)
-        load_at_q[j][q] = load_terms[j].g(fv_p.quadrature_point(q));
   if (constant_coefficients)
   {
     coefficients_at_q.clear();
@@ -243,8 +227,6 @@ template CellKernel<2>::CellKernel(const Space<2> &, const FE_Q<2> &,
                                    const TemporalBasis &, unsigned int);
 template void CellKernel<2>::reinit(const cell_iterator &);
 template const std::vector<double> &CellKernel<2>::load_factors_at(double) const;
-template double CellKernel<2>::load(unsigned int, double,
-                                    const std::vector<double> &) const;
 template void CellKernel<2>::combine(const Vector<double> &,
                                      const std::vector<types::global_dof_index> &,
                                      const std::vector<double> &, double,

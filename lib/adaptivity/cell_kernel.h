@@ -220,18 +220,16 @@ private:
                : weak_form::coefficients(scene, fv_p.quadrature_point(q), t);
   }
 
-  /// f = sum_j a_j(t) g_j(x) where the scene gives it (Scene::separable_rhs): g_j at the
-  /// cell's quadrature points, evaluated once per cell for all slabs and Gauss points.
+  /// f = sum_j a_j(t) g_j(x) where the scene gives it (Scene::separable_rhs; then the
+  /// coefficients are constant in t): the terms' vectors load_rho, load_supg are formed
+  /// once per cell on the data rule
   bool separable_load = false;
   std::vector<LoadTerm<dim>> load_terms;
-  std::vector<std::vector<double>> load_at_q; // [j][q]
   /// f at [Gauss point m][quadrature point q] as primal_functionals evaluated it
   mutable std::vector<std::vector<double>> f_at;
   /// a_j(t) by t: the same few temporal Gauss points recur on every cell
   mutable std::unordered_map<double, std::vector<double>> load_factors;
   const std::vector<double> &load_factors_at(double t) const;
-  /// f at quadrature point q and time t, with a[j] = a_j(t) (separable_load)
-  double load(unsigned int q, double t, const std::vector<double> &a) const;
   void build_cell_matrices();
   /// A separable load's vectors (g_j, w_l) and (g_j, b.grad w_l) per term j on the rule of
   /// fv (W's shapes, the weights and points).
