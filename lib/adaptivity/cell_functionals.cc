@@ -95,7 +95,10 @@ void CellKernel<dim>::load_quadrature_error(double t0, double tau, bool first_sl
     }
   };
   const auto b_lo = [&](double t)
-  { return [&, t](unsigned int q) { return scene.convection(fv_lo.quadrature_point(q), t); }; };
+  {
+    return [&, t](unsigned int q)
+    { return scene.convection(fv_lo.quadrature_point(q), t); };
+  };
   for (unsigned int m = 0; m < g.size(); ++m)
   {
     const double t = t0 + g[m] * tau, wt = tau * omega[m];
@@ -116,15 +119,18 @@ void CellKernel<dim>::load_quadrature_error(double t0, double tau, bool first_sl
         [&](unsigned int q) { return coefficients(q, t).b; }, D.val[m]);
     add(
         fv_lo, fv_lo, -wt,
-        [&](unsigned int q) { return scene.rhs(fv_lo.quadrature_point(q), t); },
-        b_lo(t), D.val[m]);
+        [&](unsigned int q) { return scene.rhs(fv_lo.quadrature_point(q), t); }, b_lo(t),
+        D.val[m]);
   }
   if (!first_slab)
     return;
   // u_0 on the rule the primal residual's jump takes it (fv_load with coefficients
   // constant in time, else the cell rule)
   const auto u0_on = [&](const FEValues<dim> &fv)
-  { return [&](unsigned int q) { return scene.initial_value(fv.quadrature_point(q)); }; };
+  {
+    return [this, fv = &fv](unsigned int q)
+    { return scene.initial_value(fv->quadrature_point(q)); };
+  };
   if (constant_coefficients)
     add(
         fv_load, fv_load, 1., u0_on(fv_load),
@@ -132,8 +138,8 @@ void CellKernel<dim>::load_quadrature_error(double t0, double tau, bool first_sl
         D.jump);
   else
     add(
-        fv_w, fv_p, 1., u0_on(fv_p), [&](unsigned int q) { return coefficients(q, t0).b; },
-        D.jump);
+        fv_w, fv_p, 1., u0_on(fv_p),
+        [&](unsigned int q) { return coefficients(q, t0).b; }, D.jump);
   add(fv_lo, fv_lo, -1., u0_on(fv_lo), b_lo(t0), D.jump);
 }
 

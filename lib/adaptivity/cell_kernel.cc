@@ -6,15 +6,13 @@
 
 #include <algorithm>
 
-
 namespace anisodwr
 {
 using namespace dealii;
 
-
 template <int dim>
 CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
-                            const TemporalBasis &basis, unsigned int data_copies)
+                            const TemporalBasis &basis, const DataQuadrature &data)
     : primal(primal), scene(primal.scene), fe_p(primal.finite_element()), fe_w(fe_w),
       basis(basis), quad(fe_w.degree + 2), fquad(fe_w.degree + 2),
       fv_p(primal.mapping(), fe_p, quad,
@@ -22,14 +20,14 @@ CellKernel<dim>::CellKernel(const Space<dim> &primal, const FE_Q<dim> &fe_w,
                update_JxW_values),
       fv_w(primal.mapping(), fe_w, quad,
            update_values | update_gradients | update_hessians),
-      quad_primal(fe_p.degree + 2),
+      data_error(data.error_term), quad_primal(fe_p.degree + 2),
       fv_lo(primal.mapping(), fe_w, quad_primal,
             update_values | update_gradients | update_quadrature_points |
                 update_JxW_values),
-      quad_load(QGauss<1>(fe_w.degree + 2), std::max(1u, data_copies)),
+      quad_load(QGauss<1>(fe_w.degree + 2), std::max(1u, data.copies)),
       fv_load(primal.mapping(), fe_w, quad_load,
-            update_values | update_gradients | update_quadrature_points |
-                update_JxW_values),
+              update_values | update_gradients | update_quadrature_points |
+                  update_JxW_values),
       ff_p(primal.mapping(), fe_p, fquad,
            update_values | update_gradients | update_normal_vectors | update_quadrature_points |
                update_JxW_values),
@@ -72,7 +70,8 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
   fv_w.reinit(typename Triangulation<dim>::cell_iterator(cell));
   delta_h = primal.unbounded_delta(cell);
   cw = primal.cell_diffusion(cell);
-  fv_lo.reinit(typename Triangulation<dim>::cell_iterator(cell));
+  if (data_error)
+    fv_lo.reinit(typename Triangulation<dim>::cell_iterator(cell));
   fv_load.reinit(typename Triangulation<dim>::cell_iterator(cell));
   if (constant_coefficients)
   {
@@ -224,7 +223,7 @@ void CellKernel<dim>::combine(const Vector<double> &U,
 }
 
 template CellKernel<2>::CellKernel(const Space<2> &, const FE_Q<2> &,
-                                   const TemporalBasis &, unsigned int);
+                                   const TemporalBasis &, const DataQuadrature &);
 template void CellKernel<2>::reinit(const cell_iterator &);
 template const std::vector<double> &CellKernel<2>::load_factors_at(double) const;
 template void CellKernel<2>::combine(const Vector<double> &,

@@ -6,6 +6,7 @@
 //   cell_functionals.cc          rho(u), S(u), A(.)(z), S'(., z) and J' on the cell
 //   cell_matrices.cc             rho, S, A, S' as matrices (coefficients constant in t)
 //   slab_functions.cc            slab functions in W-local coefficients
+#include "adaptivity/estimator.h"
 #include "space/space.h"
 #include "space/weak_form.h"
 #include "time/temporal_basis.h"
@@ -53,10 +54,13 @@ template <int dim> class CellKernel
 public:
   using cell_iterator = typename dealii::DoFHandler<dim>::active_cell_iterator;
 
-  /// data_copies: the data rule's copies of QGauss(deg W + 2) per direction
-  /// (DataQuadrature::copies)
+  /// data: the data rule (DataQuadrature::copies) and whether load_quadrature_error
+  /// is wanted (DataQuadrature::error_term; only then the primal's rule is set up)
   CellKernel(const Space<dim> &primal, const dealii::FE_Q<dim> &fe_w,
-             const TemporalBasis &basis, unsigned int data_copies);
+             const TemporalBasis &basis, const DataQuadrature &data);
+
+  /// DataQuadrature::error_term: load_quadrature_error may be called
+  bool data_quadrature_error() const { return data_error; }
 
   unsigned int n_points() const { return g.size(); }
   double point(unsigned int m) const { return g[m]; }
@@ -96,7 +100,8 @@ public:
   /// and the error identity's rho(u)(z_h) - S(u)(z_h) is their difference, not zero
   /// (doc/method.md §6). val[m]: wt_m (f(t_m), w + delta b.grad w) on the kernel's rule
   /// minus the same on the primal's; jump (first slab only): (u_0, w + delta b.grad w)
-  /// likewise. Call after primal_functionals of the same slab (it reuses f's values).
+  /// likewise. Only with data_quadrature_error(); call after primal_functionals of the
+  /// same slab (it reuses f's values).
   void load_quadrature_error(double t0, double tau, bool first_slab,
                              SlabFunctional &D) const;
 
@@ -160,6 +165,7 @@ private:
   dealii::QGauss<dim> quad;
   dealii::QGauss<dim - 1> fquad;
   dealii::FEValues<dim> fv_p, fv_w;
+  const bool data_error; // DataQuadrature::error_term
   /// W on the primal's own cell rule QGauss(p+2) (load_quadrature_error)
   dealii::QGauss<dim> quad_primal;
   dealii::FEValues<dim> fv_lo;
@@ -196,7 +202,7 @@ private:
   /// (g_j, w) and (g_j, b.grad w) per term j.
   std::array<dealii::FullMatrix<double>, 5> primal_matrices;
   std::vector<dealii::Vector<double>> load_rho, load_supg;
-  /// the same on the primal's rule (load_quadrature_error)
+  /// the same on the primal's rule (load_quadrature_error; data_error only)
   std::vector<dealii::Vector<double>> lo_rho, lo_supg;
   /// the faces' terms from the cell's own side: -eps (d_n u, w), halved on interior faces
   dealii::FullMatrix<double> own_flux;

@@ -17,16 +17,15 @@ IndicatorAssembly<dim>::IndicatorAssembly(
     const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
     TimeIndicator time_indicator, const HigherOrderPrimal *hi,
     SpaceIndicator space_indicator, const Vector<double> &zT, const Vector<double> &u0,
-    const DataQuadrature &data)
+    const DataQuadrature &data_rule)
     : primal(primal), adjoint(adjoint), mesh(mesh), basis(basis), U(U), Z(Z),
       time_indicator(time_indicator), hi(hi), space_indicator(space_indicator),
-      data_error(data.error_term),
       tria(primal.dof_handler().get_triangulation()),
       ops(primal.dof_handler(), weight_degree(primal, adjoint)),
       fe_w(ops.weight_element()),
       from_primal(ops.interpolation_from(primal.finite_element())),
       from_adjoint(ops.interpolation_from(adjoint.finite_element())),
-      kernel(primal, fe_w, basis, data.copies), recon(basis),
+      kernel(primal, fe_w, basis, data_rule), recon(basis),
       goal_t(primal.scene, primal.mapping(), fe_w, tria, goals, true),
       goal_T(primal.scene, primal.mapping(), fe_w, tria, goals, false), N(mesh.n_slabs()),
       n_nodes(basis.n_dofs()), n_w(fe_w.n_dofs_per_cell()), zT(zT), u0(u0),
@@ -75,10 +74,11 @@ void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell, Indicators<dim>
 
   for (unsigned int n = 0; n < N; ++n)
     add_slab(n, c, cells, ind, supg_part, quad_part, lift_size);
-  // The SUPG consistency term (and the data quadrature term) is not directional (the seed formula's 1/2 S(u)(R_i z)
-  // is nearly the same for every i: R_i z does not measure direction i). Its cell
-  // total S(u)(R_h z) is split over the directions in proportion to the size of the
-  // directional primal error ||I_2h,i u - u||^2 (summed over the slabs).
+  // The SUPG consistency term is not directional (the seed formula's 1/2 S(u)(R_i z)
+  // is nearly the same for every i: R_i z does not measure direction i), nor is the
+  // data quadrature term. Their cell total S(u)(R_h z) + D(R_h z) is split over the
+  // directions in proportion to the size of the directional primal error
+  // ||I_2h,i u - u||^2 (summed over the slabs).
   ind.eta_h_supg += supg_part;
   ind.eta_h_quad += quad_part;
   for (unsigned int i = 0; i < dim; ++i)
@@ -123,7 +123,7 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   // the primal's quadrature error in its data: with it J(e) = rho(u)(z - z_h) +
   // S(u)(z_h) + D(z_h) holds for the u_h the primal's rule gave (rho(u)(z_h) = S(u)(z_h)
   // + D(z_h)); not directional either, so split with S(u)(R_h z)
-  if (data_error)
+  if (kernel.data_quadrature_error())
   {
     kernel.load_quadrature_error(t0, tau, n == 0, load_error);
     quad_part += apply(load_error, Rh_z, false);

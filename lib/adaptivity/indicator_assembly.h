@@ -26,7 +26,7 @@ public:
                     const std::vector<GoalSpec> &goals, TimeIndicator time_indicator,
                     const HigherOrderPrimal *hi, SpaceIndicator space_indicator,
                     const dealii::Vector<double> &zT, const dealii::Vector<double> &u0,
-                    const DataQuadrature &data);
+                    const DataQuadrature &data_rule);
 
   /// Adds the cell's eta_h,i and eta_tau (all slabs) to cells.eta_h_cell and
   /// cells.eta_tau_cell, and its contributions to the sums (per slab, per direction,
@@ -60,7 +60,6 @@ private:
   const TimeIndicator time_indicator;
   const HigherOrderPrimal *const hi;
   const SpaceIndicator space_indicator;
-  const bool data_error; // DataQuadrature::error_term
   const dealii::Triangulation<dim> &tria;
   const SpatialOperators<dim> ops;
   const dealii::FE_Q<dim> &fe_w;
@@ -88,8 +87,8 @@ private:
   std::vector<dealii::types::global_dof_index> idx_q;
   /// the slab's functionals on the cell: rho(u)(.) and S(u)(.) of u_h; A'(.)(R_h z) and
   /// S'(.)(R_h z), A'(.)(z) (the adjoint residual's forms); J'(.) over I
-  SlabFunctional rho_u, supg_u, load_error, adjoint_form_Rhz, supg_derivative_Rhz, adjoint_form_z,
-      goal_derivative;
+  SlabFunctional rho_u, supg_u, load_error, adjoint_form_Rhz, supg_derivative_Rhz,
+      adjoint_form_z, goal_derivative;
   std::array<SlabFunctional, dim> data; // the Dirichlet data's share, per direction
   /// W-local z, u and I_2h,i u - u at the temporal nodes of the slab
   std::vector<dealii::Vector<double>> z_nodes, u_nodes, lift_nodes;

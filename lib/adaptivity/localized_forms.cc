@@ -18,7 +18,7 @@ void for_cells(const Space<dim> &primal, const Space<dim> &other,
 {
   const SpatialOperators<dim> ops(primal.dof_handler(), weight_degree(primal, other));
   const FullMatrix<double> to_w = ops.interpolation_from(other.finite_element());
-  CellKernel<dim> kernel(primal, ops.weight_element(), basis, DataQuadrature{}.copies);
+  CellKernel<dim> kernel(primal, ops.weight_element(), basis, DataQuadrature{});
   std::vector<types::global_dof_index> idx(other.finite_element().n_dofs_per_cell());
   for (const auto &cell : primal.dof_handler().active_cell_iterators())
   {

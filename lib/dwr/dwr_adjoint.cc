@@ -152,7 +152,7 @@ Indicators<2> AdaptiveLoop::goal_estimate(const Space<2> &primal, const Space<2>
 {
   return estimate(primal, adjoint, mesh, basis, U, Z, {unweighted(goal)},
                   prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator,
-                 data_quadrature(prm.adaptivity));
+                  data_quadrature(prm.adaptivity));
 }
 
 void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
