@@ -1,6 +1,7 @@
 // CellKernel: the cell, its face pieces and neighbours (hanging nodes on either side),
 // and the gathering of cell coefficients from interleaved slab vectors.
 #include "adaptivity/cell_kernel.h"
+#include "adaptivity/estimator.h"
 
 #include "time/slab_vector.h"
 

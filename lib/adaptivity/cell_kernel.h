@@ -6,7 +6,6 @@
 //   cell_functionals.cc          rho(u), S(u), A(.)(z), S'(., z) and J' on the cell
 //   cell_matrices.cc             rho, S, A, S' as matrices (coefficients constant in t)
 //   slab_functions.cc            slab functions in W-local coefficients
-#include "adaptivity/estimator.h"
 #include "space/space.h"
 #include "space/weak_form.h"
 #include "time/temporal_basis.h"
@@ -24,6 +23,8 @@
 
 namespace anisodwr
 {
+struct DataQuadrature; // adaptivity/estimator.h
+
 /// Linear functionals on W-local coefficients at the r+2 temporal Gauss points of a
 /// slab and at t_{n-1}^+:
 ///   value(v) = sum_m (val[m] . v(g_m) + dt[m] . d_t v(g_m)) + jump . w(t_{n-1}^+)

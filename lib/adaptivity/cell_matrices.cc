@@ -89,9 +89,11 @@ template <int dim> void CellKernel<dim>::build_cell_matrices()
     dpg.mTmult(primal_matrices[4], gu);
   }
   if (separable_load)
+  {
     load_vectors_on(fv_load, load_rho, load_supg);
-  if (separable_load && data_error)
-    load_vectors_on(fv_lo, lo_rho, lo_supg);
+    if (data_error) // the same on the primal's rule (load_quadrature_error)
+      load_vectors_on(fv_lo, lo_rho, lo_supg);
+  }
 }
 
 template <int dim>
