@@ -377,6 +377,10 @@ TEST(CrosswindScale, ResidualOverTransportHasKnownValues)
     ASSERT_EQ(s.size(), tria.n_active_cells());
     for (const double v : s)
       EXPECT_NEAR(v, expected, 1e-12) << "u_0 = " << u0;
+    // discretization.crosswind_exponent q: the same ratio, raised to q
+    const std::vector<double> s2 = crosswind_scale(space, times, ends, 2.);
+    for (const double v : s2)
+      EXPECT_NEAR(v, expected * expected, 1e-12) << "u_0 = " << u0 << ", q = 2";
   };
   check("x", [](double x, double, double t) { return x - t; }, 0.); // moves with b
   check("y", [](double, double y, double) { return y; }, 0.);       // a layer along b

@@ -311,7 +311,8 @@ void AdaptiveLoop::prepare_refinement(const LoopRow &row, const Space<2> &primal
   };
   if (residual_crosswind(prm))
   {
-    const std::vector<double> s = crosswind_scale(primal, mesh.t, slab_ends());
+    const std::vector<double> s = crosswind_scale(primal, mesh.t, slab_ends(),
+                                                  prm.discretization.crosswind_exponent);
     crosswind_by_cell.clear();
     for (const auto &cell : tria.active_cell_iterators())
       crosswind_by_cell[cell->id()] = s[cell->active_cell_index()];

@@ -14,7 +14,8 @@ using namespace dealii;
 
 template <int dim>
 std::vector<double> crosswind_scale(const Space<dim> &space, const std::vector<double> &times,
-                                    const std::vector<Vector<double>> &ends)
+                                    const std::vector<Vector<double>> &ends,
+                                    double exponent)
 {
   const Scene<dim> &scene = space.scene;
   const DoFHandler<dim> &dofs = space.dof_handler();
@@ -62,11 +63,12 @@ std::vector<double> crosswind_scale(const Space<dim> &space, const std::vector<d
   {
     const unsigned int k = cell->active_cell_index();
     if (transport[k] > floor * cell->measure())
-      scale[k] = std::min(1., residual[k] / transport[k]);
+      scale[k] = std::pow(std::min(1., residual[k] / transport[k]), exponent);
   }
   return scale;
 }
 
 template std::vector<double> crosswind_scale<2>(const Space<2> &, const std::vector<double> &,
-                                                const std::vector<Vector<double>> &);
+                                                const std::vector<Vector<double>> &,
+                                                double);
 } // namespace anisodwr

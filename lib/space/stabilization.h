@@ -51,6 +51,8 @@ struct Stabilization
   /// linear: eps_cw,K as above on every cell; residual: times a factor s_K in [0, 1] set
   /// per cell from a previous solution (Space::set_crosswind_scale, crosswind_scale.h)
   CrosswindForm crosswind_form = CrosswindForm::linear;
+  /// residual form: the factor is min(1, |R| / (|b| |grad u|))^crosswind_exponent
+  double crosswind_exponent = 1.;
   /// Bound delta_K <= h_min,K^2 / (eps q^4) (h_min,K the shortest distance of two
   /// vertices of K, q the degree): keeps the SUPG term's eps Lap part below the
   /// diffusion (the inverse estimate |Lap v|_K <= q^2/h_min,K |grad v|_K), which on thin
