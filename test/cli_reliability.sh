@@ -213,6 +213,14 @@ if [ "$rc" != 0 ] || ! grep -q "^anisodwr: warning: discretization.crosswind_for
 else
   echo "ok: crosswind_form = residual without crosswind0 warns: $out"
 fi
+out=$(timeout 60 "$bin" run "$cfg" --output "$tmp/warn_cwq" --set adaptivity.loops=1 --set discretization.crosswind_exponent=2 2>&1 >/dev/null)
+rc=$?
+if [ "$rc" != 0 ] || ! grep -q "^anisodwr: warning: discretization.crosswind_exponent has no effect unless discretization.crosswind_form = residual" <<<"$out"; then
+  echo "FAIL: crosswind_exponent without the residual form -> exit $rc, stderr: $out"
+  fail=1
+else
+  echo "ok: crosswind_exponent without the residual form warns: $out"
+fi
 
 # out of memory: exit 3 and summary.json
 out=$( (ulimit -v 2500000 && timeout 60 "$bin" run "$cfg" --output "$tmp/oom" --set study.mode=single \

@@ -127,8 +127,9 @@ std::vector<Entry> discretization_entries()
        "crosswind_form = residual: the factor is s_K^q with q this exponent (>= 1). "
        "A layer that spreads by its own diffusion has s_K about its width over its "
        "length (1e-3 to 1e-2 in Hemker's wake), where q = 1 leaves eps_cw,K about eps "
-       "and q = 2 a hundredth of it; where u_h oscillates s_K is near 1 either way "
-       "(doc/method.md §3)."},
+       "and q = 2 s_K times that; where u_h oscillates s_K is near 1 either way "
+       "(doc/method.md §3). Other values warn unless crosswind_form = residual and "
+       "crosswind0 > 0."},
       {"discretization", "supg_tau_factor", "1", m(&S::supg_tau_factor), real(0.),
        "Bound delta_K <= supg_tau_factor * tau_n on each slab (tau_n its length), the "
        "stability condition of SUPG whose test function also multiplies du/dt; 0 drops "

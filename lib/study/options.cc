@@ -118,6 +118,11 @@ std::vector<std::string> dwr_warnings(const Parameters &prm)
   if (d.crosswind_form == CrosswindForm::residual && d.crosswind0 == 0.)
     w.push_back("discretization.crosswind_form = residual has no effect with "
                 "discretization.crosswind0 = 0 (the crosswind term is off)");
+  if (d.crosswind_exponent != 1. &&
+      (d.crosswind_form != CrosswindForm::residual || d.crosswind0 == 0.))
+    w.push_back("discretization.crosswind_exponent has no effect unless "
+                "discretization.crosswind_form = residual and discretization.crosswind0 > 0 "
+                "(it is the power of the residual switch)");
   return w;
 }
 } // namespace anisodwr
