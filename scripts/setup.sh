@@ -4,7 +4,7 @@
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # libopenblas0-pthread replaces the reference BLAS/LAPACK (update-alternatives) under
-# UMFPACK, MUMPS and LAPACK: UMFPACK factorizes 4.5-7.7x faster (doc/results.md).
+# UMFPACK, MUMPS and LAPACK: UMFPACK factorizes 2.6-4.4x faster (doc/results.md).
 PACKAGES="libdeal.ii-dev libmumps-dev openmpi-bin libopenblas0-pthread libgtest-dev cmake g++ make ninja-build ccache python3-matplotlib"
 
 missing=""
