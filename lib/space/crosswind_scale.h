@@ -17,7 +17,8 @@ namespace anisodwr
 /// |grad u_h|) of residual-based crosswind (SOLD) terms: where u_h solves the transport
 /// along b (a layer along b, a smooth solution) it is small, and where u_h changes along
 /// b against the equation (the spurious oscillations SUPG leaves) it is about 1. 0 where
-/// u_h is constant on K (mean |b| |grad u_h| below 1e-10 max|b| max|u_h| / diam Omega).
+/// u_h is constant on K (mean |b| |grad u_h| below 1e-10 max|b| max|u_h| / the diagonal of
+/// the bounding box of Omega).
 /// The factor is raised to the power `exponent` (discretization.crosswind_exponent).
 template <int dim>
 std::vector<double> crosswind_scale(const Space<dim> &space, const std::vector<double> &times,
