@@ -345,6 +345,29 @@ TEST(Mapping, CurvedBoundaryAreaConvergesAtTheMapsOrder)
   EXPECT_EQ(auto_mapping_degree(square, 3), 1u);
 }
 
+namespace
+{
+/// u(x, y, t) interpolated at the ends t_1, ..., t_N of the slabs (t_0 = times[0]).
+std::vector<dealii::Vector<double>>
+slab_ends(const Space<2> &space, const std::vector<double> &times,
+          const std::function<double(double, double, double)> &u)
+{
+  std::vector<dealii::Vector<double>> ends;
+  for (std::size_t n = 1; n < times.size(); ++n)
+  {
+    dealii::Vector<double> v(space.n_dofs());
+    const double t = times[n];
+    dealii::VectorTools::interpolate(
+        space.mapping(), space.dof_handler(),
+        dealii::ScalarFunctionFromFunctionObject<2>([&](const Point<2> &x)
+                                                    { return u(x[0], x[1], t); }),
+        v);
+    ends.push_back(v);
+  }
+  return ends;
+}
+} // namespace
+
 // discretization.crosswind_form = residual: s_K = |R(u_h)| / (|b| |grad u_h|) is 0 where
 // u_h solves the transport (a front moving with b, a layer along b), 1 where u_h changes
 // along b against the equation and 1/sqrt(2) for a gradient at 45 degrees to b.
@@ -363,18 +386,7 @@ TEST(CrosswindScale, ResidualOverTransportHasKnownValues)
     Space<2> space(*scene, tria, 1, Stabilization{});
     space.setup();
     const std::vector<double> times{0., 0.25, 0.5};
-    std::vector<dealii::Vector<double>> ends;
-    for (std::size_t n = 1; n < times.size(); ++n)
-    {
-      dealii::Vector<double> v(space.n_dofs());
-      const double t = times[n];
-      dealii::VectorTools::interpolate(
-          space.mapping(), space.dof_handler(),
-          dealii::ScalarFunctionFromFunctionObject<2>([&](const Point<2> &x)
-                                                      { return u(x[0], x[1], t); }),
-          v);
-      ends.push_back(v);
-    }
+    const auto ends = slab_ends(space, times, u);
     const std::vector<double> s = crosswind_scale(space, times, ends);
     ASSERT_EQ(s.size(), tria.n_active_cells());
     for (const double v : s)
@@ -402,22 +414,12 @@ TEST(CrosswindScale, SameInAnyThreadOrder)
        "scene.initial_value=sin(3*x)*cos(2*y)"}));
   dealii::Triangulation<2> tria;
   scene->make_coarse_grid(tria);
-  tria.refine_global(5); // 1,024 cells: several ranges of cells
+  tria.refine_global(5); // 1,024 cells: four chunks
   Space<2> space(*scene, tria, 1, Stabilization{});
   space.setup();
   const std::vector<double> times{0., 0.25, 0.5};
-  std::vector<dealii::Vector<double>> ends;
-  for (std::size_t n = 1; n < times.size(); ++n)
-  {
-    dealii::Vector<double> v(space.n_dofs());
-    const double t = times[n];
-    dealii::VectorTools::interpolate(
-        space.mapping(), space.dof_handler(),
-        dealii::ScalarFunctionFromFunctionObject<2>(
-            [&](const Point<2> &x) { return std::sin(3 * x[0] - t) * std::cos(2 * x[1]); }),
-        v);
-    ends.push_back(v);
-  }
+  const auto ends = slab_ends(space, times, [](double x, double y, double t)
+                             { return std::sin(3 * x - t) * std::cos(2 * y); });
   const std::vector<double> all = crosswind_scale(space, times, ends, 2.);
   for (int repeat = 0; repeat < 5; ++repeat)
     EXPECT_EQ(crosswind_scale(space, times, ends, 2.), all) << "repeat " << repeat;
