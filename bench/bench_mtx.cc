@@ -1,7 +1,8 @@
 // One slab matrix from a file, any PETSc solver: the benchmark of the slab solvers on
 // the systems a DWR run actually solves (matrices written by output.dump_slab_loop).
 //
-//   anisodwr_bench_mtx FILE.mtx LABEL [--transpose] [--solves N] [--air R [--air-relax T]] [PETSc options]
+//   anisodwr_bench_mtx FILE.mtx LABEL [--transpose] [--solves N] [--air R [--air-relax T]]
+//                      [--own-umfpack] [PETSc options]
 //
 // Reads a Matrix Market "coordinate real general" file, optionally transposes it (the
 // adjoint solves with K_n^T), sets up the KSP/PC chosen by the PETSc options (e.g.
@@ -13,17 +14,28 @@
 // factorization over its slabs. Prints one CSV line (the header with LABEL = --header):
 // label, unknowns, nonzeros, setup s, solve s per right-hand side, mean iterations,
 // KSP converged (1/0), max true relative residual ||b - K x_h|| / ||b||, max relative
-// error ||x - x_h|| / ||x||, peak RSS MB (the matrix as read is part of it).
+// error ||x - x_h|| / ||x||, peak RSS MB (the matrix as read is part of it), and with
+// --own-umfpack UMFPACK's own figures (empty otherwise).
 //
 // `--air R` replaces the PETSc solver by hypre directly: GMRES(30) preconditioned by
 // one BoomerAMG V-cycle with approximate ideal restriction (AIR-R, R = 1 or 2), the
 // settings PETSc's options cannot reach (one-point interpolation, F-F-C post-relaxation
 // only, Jacobi) on Falgout coarsening; same tolerance and output. `--air-relax T` sets
 // hypre's relaxation type (0 Jacobi, 3 hybrid Gauss-Seidel).
+//
+// `--own-umfpack` solves with anisodwr's own UMFPACK wrapper (solver/direct_solver.h,
+// no iterative refinement, as the slab solves run) instead of PETSc's, and adds
+// UMFPACK's figures: the peak memory its symbolic analysis predicts, the actual peak of
+// the numeric factorization and the size of the factors (MB; doc/results.md,
+// "UMFPACK's memory and the `auto` rule").
 #include "io/table.h"
+#include "solver/direct_solver.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
 
 #include <petscksp.h>
 
@@ -47,7 +59,7 @@ using namespace dealii;
 namespace
 {
 const char *header = "label,unknowns,nonzeros,setup_s,solve_s,iterations,converged,"
-                     "residual,error,peak_mb";
+                     "residual,error,peak_mb,umf_bound_mb,umf_peak_mb,umf_factors_mb";
 
 void check(PetscErrorCode ierr, const char *what)
 {
@@ -126,6 +138,8 @@ struct SolveFigures
 {
   double setup = 0, solve = 0, iterations = 0, residual = 0, error = 0;
   bool converged = true;
+  /// --own-umfpack: UMFPACK's predicted peak, actual peak and factor size (MB)
+  std::string umfpack_figures = ",,";
 };
 
 /// The fixed pseudo-random solution of right-hand side s.
@@ -336,6 +350,46 @@ SolveFigures solve_with_petsc(const Triplets &t, int n_solves)
   return f;
 }
 
+/// anisodwr's UMFPACK wrapper: analysis and factorization once, n_solves solves.
+SolveFigures solve_with_own_umfpack(const Triplets &t, int n_solves)
+{
+  std::vector<unsigned int> lengths(t.n);
+  for (PetscInt i = 0; i < t.n; ++i)
+    lengths[i] = unsigned(t.row_start[i + 1] - t.row_start[i]);
+  SparsityPattern pattern(t.n, t.n, lengths);
+  for (PetscInt i = 0; i < t.n; ++i)
+    for (PetscInt k = t.row_start[i]; k < t.row_start[i + 1]; ++k)
+      pattern.add(i, t.cols[k]);
+  pattern.compress();
+  SparseMatrix<double> K(pattern);
+  for (PetscInt i = 0; i < t.n; ++i)
+    for (PetscInt k = t.row_start[i]; k < t.row_start[i + 1]; ++k)
+      K.set(i, t.cols[k], t.vals[k]);
+  anisodwr::DirectSolver lu(0);
+  SolveFigures f;
+  Timer timer;
+  lu.factorize(K);
+  f.setup = timer.wall_time();
+  Vector<double> x(t.n);
+  std::vector<double> xv(t.n);
+  for (int s = 0; s < n_solves; ++s)
+  {
+    const std::vector<double> rhs = right_hand_side(t, s);
+    std::copy(rhs.begin(), rhs.end(), x.begin());
+    timer.restart();
+    lu.solve(x);
+    f.solve += timer.wall_time() / n_solves;
+    std::copy(x.begin(), x.end(), xv.begin());
+    add_accuracy(t, s, rhs, xv, f);
+  }
+  f.converged = f.residual <= 1e-8;
+  const anisodwr::DirectSolverInfo &info = lu.info();
+  std::ostringstream figures;
+  figures << info.predicted_peak_mb << "," << info.peak_mb << "," << info.factor_mb;
+  f.umfpack_figures = figures.str();
+  return f;
+}
+
 int run(int argc, char **argv)
 {
   if (argc >= 2 && std::strcmp(argv[1], "--header") == 0)
@@ -346,11 +400,11 @@ int run(int argc, char **argv)
   if (argc < 3)
   {
     std::cerr << "usage: anisodwr_bench_mtx FILE.mtx LABEL [--transpose] [--solves N] "
-                 "[--air R [--air-relax T]] [PETSc options] | --header\n";
+                 "[--air R [--air-relax T]] [--own-umfpack] [PETSc options] | --header\n";
     return 2;
   }
   const std::string path = argv[1], label = argv[2];
-  bool transpose = false;
+  bool transpose = false, own_umfpack = false;
   int n_solves = 3, air = 0, air_relax = 0;
   for (int a = 3; a < argc; ++a)
     if (std::strcmp(argv[a], "--transpose") == 0)
@@ -361,13 +415,16 @@ int run(int argc, char **argv)
       air = std::atoi(argv[++a]);
     else if (std::strcmp(argv[a], "--air-relax") == 0 && a + 1 < argc)
       air_relax = std::atoi(argv[++a]);
+    else if (std::strcmp(argv[a], "--own-umfpack") == 0)
+      own_umfpack = true;
   const Triplets t = read_matrix_market(path, transpose);
-  const SolveFigures f = air > 0 ? solve_with_air(t, air, air_relax, n_solves)
-                                 : solve_with_petsc(t, n_solves);
+  const SolveFigures f = own_umfpack ? solve_with_own_umfpack(t, n_solves)
+                         : air > 0   ? solve_with_air(t, air, air_relax, n_solves)
+                                     : solve_with_petsc(t, n_solves);
   std::cout << label << "," << t.n << "," << t.cols.size() << "," << f.setup << ","
             << f.solve << "," << f.iterations << "," << int(f.converged) << ","
-            << f.residual << "," << f.error << "," << anisodwr::peak_memory_mb()
-            << std::endl;
+            << f.residual << "," << f.error << "," << anisodwr::peak_memory_mb() << ","
+            << f.umfpack_figures << std::endl;
   return 0;
 }
 } // namespace

@@ -10,7 +10,9 @@
 # Writes OUT/bench_mtx.csv and prints a Markdown table.
 # Usage: scripts/bench_mtx.sh [OUT]
 # Env: CASES = "config:loop ..." (default: hemker_count loops 10 12 14, moving hump 10 12),
-#      SOLVERS (default "umfpack mumps ilu1 ilu2 boomeramg air1 air2").
+#      SOLVERS (default "umfpack mumps ilu1 ilu2 boomeramg air1 air2"; also umfpack_own:
+#      anisodwr's own UMFPACK wrapper, with UMFPACK's predicted and actual peak and the
+#      factors' size in the CSV's umf_* columns).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=${ANISODWR_BUILD_DIR:-$ROOT/build}
@@ -27,6 +29,7 @@ solver_args() {
   ilu1 | ilu2) echo "-ksp_type gmres -ksp_pc_side right -ksp_gmres_restart 30 -pc_type ilu -pc_factor_levels ${1#ilu}" ;;
   boomeramg) echo "-ksp_type gmres -ksp_pc_side right -ksp_gmres_restart 30 -pc_type hypre -pc_hypre_type boomeramg" ;;
   air1 | air2) echo "--air ${1#air}" ;;
+  umfpack_own) echo "--own-umfpack" ;;
   *) echo "bench_mtx.sh: unknown solver '$1'" >&2 && exit 2 ;;
   esac
 }
@@ -52,7 +55,7 @@ PY
     for s in $SOLVERS; do
       # shellcheck disable=SC2046
       line=$("$BUILD/bench/anisodwr_bench_mtx" "$mtx" "$s" $flag $(solver_args "$s") 2>/dev/null |
-        grep "^$s," || echo "$s,,,,,,0,,,")
+        grep "^$s," || echo "$s,,,,,,0,,,,,,")
       echo "$scene,$loop,$problem,$nspace,$ar,$line" | tee -a "$CSV"
     done
     rm -f "$mtx"
