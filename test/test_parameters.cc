@@ -175,9 +175,15 @@ TEST(Parameters, AdjointDelta0ReachesTheAdjointSpace)
     return space->delta(cell, 1.) / std::sqrt(cell->measure());
   };
   EXPECT_NEAR(delta({}, false), 0.8, 1e-14);
-  EXPECT_NEAR(delta({}, true), 0.8, 1e-14);
-  EXPECT_NEAR(delta({"adaptivity.adjoint_delta0=0.1"}, true), 0.1, 1e-14);
-  EXPECT_NEAR(delta({"adaptivity.adjoint_delta0=0.1"}, false), 0.8, 1e-14);
+  EXPECT_NEAR(delta({}, true), 0.1, 1e-14); // the adjoint's own default, 0.1
+  EXPECT_NEAR(delta({"adaptivity.adjoint_delta0=-1"}, true), 0.8, 1e-14); // the primal's
+  EXPECT_NEAR(delta({"adaptivity.adjoint_delta0=0.3"}, true), 0.3, 1e-14);
+  EXPECT_NEAR(delta({"adaptivity.adjoint_delta0=0.3"}, false), 0.8, 1e-14);
+  // never more than the primal's: a Galerkin primal has a Galerkin adjoint
+  EXPECT_EQ(delta({"discretization.delta0=0"}, true), 0.);
+  EXPECT_NEAR(delta({"discretization.delta0=0.05"}, true), 0.05, 1e-14);
+  EXPECT_NEAR(delta({"discretization.delta0=0.05", "adaptivity.adjoint_delta0=-1"}, true),
+              0.05, 1e-14);
   EXPECT_EQ(delta({"adaptivity.adjoint_delta0=0.1", "adaptivity.adjoint_stabilization=none"},
                   true),
             0.);
@@ -186,6 +192,6 @@ TEST(Parameters, AdjointDelta0ReachesTheAdjointSpace)
   // h_min = 1/4, q = 2: 1/256, i.e. delta_K / h_K = 1/64; the primal keeps 0.8
   EXPECT_NEAR(delta({"scene.epsilon=1"}, true), 1. / 64., 1e-14);
   EXPECT_NEAR(delta({"scene.epsilon=1", "adaptivity.adjoint_inverse_bound=false"}, true),
-              0.8, 1e-14);
+              0.1, 1e-14);
   EXPECT_NEAR(delta({"scene.epsilon=1"}, false), 0.8, 1e-14);
 }

@@ -156,7 +156,7 @@ struct MarkingOptions
   /// cell: mark the theta_h fraction of cells by sum_i |eta_h,i^K|; a marked cell is
   /// cut in direction i iff |eta_h,i^K| >= kappa * max_j |eta_h,j^K| (the directions
   /// the cell needs, not every direction whose pair passed a global threshold).
-  Marking marking = Marking::cell;
+  Marking marking = Marking::joint;
   /// count: theta_h is a fraction of the cells (pairs); bulk: of the indicators' sum
   MarkingCriterion marking_criterion = MarkingCriterion::count;
   double theta_h = 0.25, theta_coarsen = 0., kappa = 0.75;

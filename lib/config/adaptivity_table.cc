@@ -11,7 +11,7 @@ std::vector<Entry> adaptivity_entries()
       {"adaptivity", "mode", "anisotropic", m(&S::mode), by_name,
        "anisotropic: mark per direction by |eta_h,i|; isotropic: mark by |eta_h|, refine "
        "isotropically; uniform: refine every cell."},
-      {"adaptivity", "marking", "cell", m(&S::marking), by_name,
+      {"adaptivity", "marking", "joint", m(&S::marking), by_name,
        "Anisotropic marking. joint: rank all (cell, direction) pairs by |eta_h,i^K| and "
        "mark the theta_h fraction of the pairs; per_direction: mark the theta_h fraction "
        "of cells in each direction separately (refines layer cells in every direction); "
@@ -129,7 +129,8 @@ std::vector<Entry> adaptivity_entries()
        "temporal goal error next to eta_tau (loops.csv: err_tau, err_tau_order; "
        "err_time_<goal> per goal); costs 7 primal solves per slab."},
       {"adaptivity", "adjoint_degree", "0", m(&S::adjoint_degree), integer(0, 8),
-       "Polynomial degree q of the adjoint; 0 means q = 2p."},
+       "Polynomial degree q of the adjoint; 0 (the default) means q = p + 1 (doc/results.md, "
+       "'Error control without tuning')."},
       {"adaptivity", "space_indicator", "primal_residual", m(&S::space_indicator), by_name,
        "Form of eta_h,i. average: 1/2 rho(u)(z - R_i z) + 1/2 rho*(u, R_h z)(I_2h,i u - "
        "u) + SUPG terms (doc/method.md §8; where a cell has no directional lift only the primal "
@@ -143,9 +144,12 @@ std::vector<Entry> adaptivity_entries()
        "in degree q (doc/method.md §5); none: the adjoint is the Galerkin (delta = 0) discretization "
        "of the continuous adjoint, consistent with it; the estimator's S terms still use "
        "the primal's delta_K."},
-      {"adaptivity", "adjoint_delta0", "-1", m(&S::adjoint_delta0), real(-1.),
-       "delta0 of the transposed SUPG adjoint (adjoint_stabilization = transposed); negative "
-       "(default -1): discretization.delta0. The estimator's S terms always use the primal's delta_K."},
+      {"adaptivity", "adjoint_delta0", "0.1", m(&S::adjoint_delta0), real(-1.),
+       "delta0 of the transposed SUPG adjoint (adjoint_stabilization = transposed), "
+       "delta_K = adjoint_delta0 |K|^(1/d) within adjoint_inverse_bound (the default 0.1: "
+       "doc/results.md, 'Error control without tuning'), at most discretization.delta0 "
+       "(a Galerkin primal has a Galerkin adjoint); negative (-1): discretization.delta0. "
+       "The estimator's S terms always use the primal's delta_K."},
       {"adaptivity", "adjoint_inverse_bound", "true", m(&S::adjoint_inverse_bound), boolean,
        "Bound the transposed SUPG adjoint's delta_K <= h_min,K^2 / (eps q^4) (h_min,K the "
        "shortest vertex distance of K): the inverse estimate's bound that keeps the SUPG "

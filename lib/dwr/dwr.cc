@@ -72,7 +72,7 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
       J_exact(goals.size(), dwr_nan), marking(marking_options(prm)),
       tria(tria_smoothing<2>(marking)), basis(prm.discretization.r),
       q(prm.adaptivity.adjoint_degree ? prm.adaptivity.adjoint_degree
-                                      : 2 * prm.discretization.p)
+                                      : prm.discretization.p + 1)
 {
   scene->make_coarse_grid(tria);
   mesh = TimeMesh::uniform(scene->end_time, prm.discretization.n_slabs);

@@ -4,6 +4,8 @@
 #include "slab/auto_solver.h"
 #include "space/space.h"
 
+#include <algorithm>
+
 namespace anisodwr
 {
 SceneOptions scene_options(const Parameters &prm)
@@ -94,9 +96,13 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
                                              unsigned int degree)
 {
   const AdaptivitySection &a = prm.adaptivity;
+  // never more SUPG than the primal's: a Galerkin primal gets a Galerkin adjoint (a
+  // stabilized adjoint of an unstabilized primal overestimates a flux goal 5-6-fold,
+  // doc/results.md, 'Error control without tuning')
+  const double primal = prm.discretization.delta0;
   const double delta0 = a.adjoint_stabilization == AdjointStabilization::none ? 0.
-                        : a.adjoint_delta0 >= 0                              ? a.adjoint_delta0
-                                                : prm.discretization.delta0;
+                        : a.adjoint_delta0 >= 0 ? std::min(a.adjoint_delta0, primal)
+                                                : primal;
   return make_space_with(prm, scene, tria, degree, delta0, 1., a.adjoint_inverse_bound);
 }
 
