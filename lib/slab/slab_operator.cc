@@ -370,6 +370,7 @@ void SlabOperator<dim>::freeze(double t_start, double tau_n)
   frozen.mats.A.clear();
   frozen.mats.Ac.clear();
   frozen.tau = tau_n;
+  frozen.t_start = t_start;
   frozen.max_iterations = 0;
   frozen.stale = false;
   time.factorize += timer.wall_time();
@@ -495,32 +496,60 @@ void SlabOperator<dim>::solve(const Vector<double> &load, Vector<double> &U, boo
 }
 
 template <int dim>
+double SlabOperator<dim>::solve_iterative_setup(int d, bool transpose)
+{
+  if (krylov[d])
+    return 0.;
+  Timer timer;
+  auto solver = std::make_unique<IterativeSlabSolver>(it_opt);
+  SlabMatrix matrix;
+  matrix.assembled = k_assembled ? &K : nullptr;
+  matrix.terms = &terms_cond;
+  matrix.m = basis.n_dofs();
+  matrix.split = kron.S1 ? &kron : nullptr;
+  matrix.modes = frozen_modes() ? &frozen.lu : nullptr;
+  solver->setup(matrix, transpose);
+  krylov[d] = std::move(solver);
+  const double setup_time = timer.wall_time();
+  time.precondition += setup_time;
+  ++time.n_preconditioners;
+  return setup_time;
+}
+
+template <int dim>
 double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
 {
   const int d = transpose ? 1 : 0;
-  double setup_time = 0;
-  if (!krylov[d])
-  {
-    Timer timer;
-    auto solver = std::make_unique<IterativeSlabSolver>(it_opt);
-    SlabMatrix matrix;
-    matrix.assembled = k_assembled ? &K : nullptr;
-    matrix.terms = &terms_cond;
-    matrix.m = basis.n_dofs();
-    matrix.split = kron.S1 ? &kron : nullptr;
-    matrix.modes = frozen_modes() ? &frozen.lu : nullptr;
-    solver->setup(matrix, transpose);
-    krylov[d] = std::move(solver);
-    setup_time = timer.wall_time();
-    time.precondition += setup_time;
-    ++time.n_preconditioners;
-  }
+  double setup_time = solve_iterative_setup(d, transpose);
   Vector<double> x(rhs.size());
   if (guess[d].size() == rhs.size())
     initial_guess(d, x);
+  const Vector<double> x0(x);
+  bool refrozen = false;
   try
   {
-    const KrylovStats stats = krylov[d]->solve(rhs, x);
+    KrylovStats stats;
+    try
+    {
+      stats = krylov[d]->solve(rhs, x);
+    }
+    catch (const KrylovFailure &)
+    {
+      // A preconditioner frozen at an earlier slab: once more with the operator frozen
+      // at this slab's middle (one mode factorization) before the coupled direct solve
+      // (a coupled LU of the slab takes several times the mode factors' memory).
+      if (!frozen_modes() || frozen.t_start == t0)
+        throw;
+      Timer timer;
+      freeze(t0, tau);
+      refrozen = true;
+      krylov[0].reset();
+      krylov[1].reset();
+      const double refreeze = timer.wall_time();
+      setup_time += refreeze + solve_iterative_setup(d, transpose);
+      x = x0;
+      stats = krylov[d]->solve(rhs, x);
+    }
     ++time.n_krylov_solves;
     time.krylov_iterations += stats.iterations;
     time.max_krylov_iterations = std::max(time.max_krylov_iterations, stats.iterations);
@@ -545,6 +574,7 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
           {
             std::cerr << "anisodwr: Krylov solve on slab (" << t0 << ", " << t0 + tau
                       << "] failed (" << e.what()
+                      << (refrozen ? "; also with the operator frozen at this slab" : "")
                       << "); solved by the coupled direct solver\n";
           });
     ++time.n_fallbacks;

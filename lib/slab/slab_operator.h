@@ -17,6 +17,7 @@
 #include "time/kronecker.h"
 #include "time/temporal_basis.h"
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <utility>
@@ -146,6 +147,8 @@ private:
     SpatialMatrices mats;
     ModeDirectSolver lu;
     double tau = -1;
+    /// the start of the slab whose middle it is frozen at
+    double t_start = std::numeric_limits<double>::quiet_NaN();
     unsigned int max_iterations = 0;
     bool stale = true;
   } frozen;
@@ -173,6 +176,9 @@ private:
   /// Assembles the spatial matrices at t_start + tau_n/2 and factorizes the frozen
   /// operator D (x) Mc + tau Mhat (x) Ac by its temporal modes.
   void freeze(double t_start, double tau_n);
+  /// The Krylov solver of direction d (1: transposed) and its preconditioner, built if
+  /// missing; returns the set-up time.
+  double solve_iterative_setup(int d, bool transpose);
   /// The direct transposed solve of solve() (reads the factors and the constraints only).
   void direct_transposed(const dealii::Vector<double> &load, dealii::Vector<double> &U) const;
   void assemble_matrix();
