@@ -164,7 +164,7 @@ std::vector<Entry> adaptivity_entries()
        "halved along b, beside the marking (loops.csv `bound_cuts`). SUPG oscillates on "
        "such cells where the solution changes along the flow (Hemker: the top of the "
        "circle, doc/results.md). 0: off; no effect without bounds."},
-      {"adaptivity", "data_rule_copies", "2", m(&S::data_rule_copies), integer(1, 8),
+      {"adaptivity", "data_rule_copies", "3", m(&S::data_rule_copies), integer(1, 8),
        "The estimator integrates f (where the scene's f is separable in x and t, as the "
        "built-in scenes' are) and u_0 (coefficients constant in time) by QGauss(deg W + 2) "
        "iterated this many times per direction (once per cell, so it costs little); other "

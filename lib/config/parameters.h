@@ -132,7 +132,7 @@ struct AdaptivitySection : MarkingOptions
   /// along b (cells_out_of_bounds); 0: off
   double bound_refinement = 0.;
   /// the estimator's rule for f and u_0: QGauss(deg W + 2) iterated this many times
-  unsigned int data_rule_copies = 2;
+  unsigned int data_rule_copies = 3;
   /// eta_h carries the primal's quadrature error in f and u_0
   bool data_quadrature_error = true;
 };
