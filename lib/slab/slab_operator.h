@@ -53,6 +53,11 @@ struct SolverTotals
                 fallbacks = 0, inner_iterations = 0, frozen_factorizations = 0;
 };
 const SolverTotals &solver_totals();
+namespace detail
+{
+/// The totals SlabOperator's solves add to (slab_operator.cc, slab_krylov.cc).
+SolverTotals &mutable_solver_totals();
+} // namespace detail
 /// `"solver_fallbacks": n, "krylov": {...}` (JSON members, no braces).
 std::string solver_totals_json();
 
