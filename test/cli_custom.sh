@@ -76,9 +76,10 @@ sys.exit(0 if ok else 1)
 PY
 # The Dirichlet data's share of eta_h (loops.csv eta_h_data) on config/hartmann_hill.json,
 # whose boundary data u = 1/(1 + 50 |x - m(t)|^2) vary along the walls: it is non-zero on
-# every loop and falls as the walls are refined, and the mean goal's error with it (measured
-# 1.3e-4 and 6e-7 at loops 10-11; where the estimator missed the term, the boundary cells
-# stayed coarse and that error stalled at 1.2e-3).
+# every loop and falls as the walls are refined (at loop 11 below a tenth of its largest
+# value; measured 1.5e-2 at loop 3, 1.4e-4 at loop 11), and the mean goal's error with it
+# (measured 2.8e-6 and 4.3e-6 at loops 10-11; where the estimator missed the term, the
+# boundary cells stayed coarse and that error stalled at 1.2e-3).
 expect 0 "results:" -- run "$src/config/hartmann_hill.json" --output "$tmp/hill" "${quiet[@]}" \
   --set adaptivity.tolerance=0 --set adaptivity.loops=11 --set adaptivity.per_goal_estimates=true
 /usr/bin/python3 - "$tmp/hill/loops.csv" <<'PY' || fail=1
@@ -86,7 +87,7 @@ import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 data = [float(r["eta_h_data"]) for r in rows]
 err = [abs(float(r["err_mean_all"])) for r in rows]
-ok = (len(rows) == 11 and all(d != 0 for d in data) and abs(data[-1]) < abs(data[0]) / 10
+ok = (len(rows) == 11 and all(d != 0 for d in data) and abs(data[-1]) < max(abs(d) for d in data) / 10
       and max(err[-2:]) < 3e-4)
 print("hartmann eta_h_data", data[0], "->", data[-1], "mean error", err[-2:],
       "ok" if ok else "FAILED")

@@ -126,7 +126,8 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
          const TemporalBasis &basis, const std::vector<Vector<double>> &U,
          const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
          const TimeIndicator time_indicator, const HigherOrderPrimal *hi,
-         const SpaceIndicator space_indicator, const DataQuadrature &data)
+         const SpaceIndicator space_indicator, const DataQuadrature &data,
+         const bool conforming_weights)
 {
   if ((time_indicator == TimeIndicator::higher_order) != (hi != nullptr))
     throw std::invalid_argument("estimate: the higher_order time indicator needs the "
@@ -167,13 +168,16 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
   ind.eta_tau_cell.assign(tria.n_active_cells(), 0.);
   ind.eta_tau_slab.assign(mesh.n_slabs(), 0.);
 
+  const HangingDefect<dim> hanging =
+      conforming_weights ? HangingDefect<dim>(primal, adjoint, Z, basis.n_dofs())
+                         : HangingDefect<dim>(basis.n_dofs());
   const auto sums = add_cells_in_chunks(
       primal.dof_handler(), mesh.n_slabs(),
       [&]()
       {
         return IndicatorAssembly<dim>(primal, adjoint, mesh, basis, U, Z, goals,
                                       time_indicator, hi, space_indicator, zT, u0,
-                                      data);
+                                      data, hanging);
       },
       ind);
   for (const auto &s : sums)
@@ -202,5 +206,5 @@ template Indicators<2> estimate<2>(const Space<2> &, const Space<2> &, const Tim
                                    const std::vector<Vector<double>> &,
                                    const std::vector<GoalSpec> &, TimeIndicator,
                                    const HigherOrderPrimal *, SpaceIndicator,
-                                   const DataQuadrature &);
+                                   const DataQuadrature &, bool);
 } // namespace anisodwr

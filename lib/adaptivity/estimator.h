@@ -137,7 +137,9 @@ struct HigherOrderPrimal
 };
 
 /// Primal u (FE_Q(p), `primal`) and adjoint z (FE_Q(q), `adjoint`) on the same mesh;
-/// U, Z interleaved per slab. Weight element W = FE_Q(max(q, 2p)).
+/// U, Z interleaved per slab. Weight element W = FE_Q(max(q, 2p)). conforming_weights:
+/// at hanging nodes the weights use the conforming interpolant I_h z (doc/method.md §7,
+/// adaptivity/hanging_defect.h); false: the cell-wise R_h z.
 template <int dim>
 Indicators<dim>
 estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
@@ -146,7 +148,7 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
          TimeIndicator time_indicator = TimeIndicator::average,
          const HigherOrderPrimal *higher_order = nullptr,
          SpaceIndicator space_indicator = SpaceIndicator::average,
-         const DataQuadrature &data = {});
+         const DataQuadrature &data = {}, bool conforming_weights = true);
 
 /// The localized forms summed over all cells, one value per slab, for given global
 /// functions (for the localization tests). u in `primal`'s space; the weights w, y, v

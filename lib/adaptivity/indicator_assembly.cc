@@ -17,7 +17,7 @@ IndicatorAssembly<dim>::IndicatorAssembly(
     const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
     TimeIndicator time_indicator, const HigherOrderPrimal *hi,
     SpaceIndicator space_indicator, const Vector<double> &zT, const Vector<double> &u0,
-    const DataQuadrature &data_rule)
+    const DataQuadrature &data_rule, const HangingDefect<dim> &hanging)
     : primal(primal), adjoint(adjoint), mesh(mesh), basis(basis), U(U), Z(Z),
       time_indicator(time_indicator), hi(hi), space_indicator(space_indicator),
       tria(primal.dof_handler().get_triangulation()),
@@ -30,7 +30,8 @@ IndicatorAssembly<dim>::IndicatorAssembly(
       goal_T(primal.scene, primal.mapping(), fe_w, tria, goals, false), N(mesh.n_slabs()),
       n_nodes(basis.n_dofs()), n_w(fe_w.n_dofs_per_cell()), zT(zT), u0(u0),
       recon_z(kernel.n_points()), recon_u(kernel.n_points()),
-      n_nodes_hi(hi ? hi->basis.n_dofs() : 0), u_hi_nodes(n_nodes_hi), e_prev(n_w),
+      n_nodes_hi(hi ? hi->basis.n_dofs() : 0), hanging(hanging),
+      defect_p(primal.finite_element().n_dofs_per_cell()), u_hi_nodes(n_nodes_hi), e_prev(n_w),
       idx_q(adjoint.finite_element().n_dofs_per_cell()), z_nodes(n_nodes),
       u_nodes(n_nodes), lift_nodes(n_nodes), z_nodes_next(n_nodes), lift_error_last(dim),
       Rz_nodes(n_nodes), z_next(n_w), u_prev(n_w), tmp(n_w), work_T(n_w), work_z(n_w),
@@ -58,6 +59,24 @@ void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell, Indicators<dim>
                                       Indicators<dim> &ind)
 {
   kernel.reinit(cell);
+  hanging.cell_slots(kernel.dof_indices(), cell_slots);
+  n_groups = 0;
+  for (const auto &[j, slot] : cell_slots)
+  {
+    const unsigned int dir = hanging.direction(slot);
+    unsigned int g = 0;
+    while (g < n_groups && groups[g].direction != dir)
+      ++g;
+    if (g == n_groups)
+    {
+      if (groups.size() == n_groups)
+        groups.emplace_back().w.assign(n_nodes, Vector<double>(n_w));
+      groups[g].direction = dir;
+      groups[g].slots.clear();
+      ++n_groups;
+    }
+    groups[g].slots.emplace_back(j, slot);
+  }
   typename DoFHandler<dim>::active_cell_iterator cq(&tria, cell->level(), cell->index(),
                                                     &adjoint.dof_handler());
   cq->get_dof_indices(idx_q);
@@ -109,6 +128,14 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   // R_h z, from R_h applied to z's nodal vectors (R_h acts in space only)
   for (unsigned int k = 0; k < n_nodes; ++k)
     sv::vmult(Rz_nodes[k], ops.restriction(dim), z_nodes[k]);
+  // at hanging nodes: the conforming I_h z (adaptivity/hanging_defect.h)
+  if (n_groups)
+  {
+    gather_defects(n);
+    for (unsigned int g = 0; g < n_groups; ++g)
+      for (unsigned int k = 0; k < n_nodes; ++k)
+        sv::subtract(Rz_nodes[k], groups[g].w[k]);
+  }
   slab_function(kernel, basis, tau, Rz_nodes, Rh_z);
   kernel.adjoint_functional(t0, tau, Rz_nodes, Rh_z, false, adjoint_form_Rhz);
   kernel.adjoint_functional(t0, tau, Rz_nodes, Rh_z, true, supg_derivative_Rhz);
@@ -139,6 +166,18 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
     ind.eta_h[i] += eta;
     split += 2 * half_rho;
   }
+  // the hanging-node defects' part of rho(u)(z - I_h z), in the direction along their
+  // coarse face
+  for (unsigned int g = 0; g < n_groups; ++g)
+  {
+    slab_function(kernel, basis, tau, groups[g].w, defect);
+    const double d = apply(rho_u, defect, false),
+                 eta = space_indicator == SpaceIndicator::primal_residual ? d : d / 2;
+    cells.eta_h_cell[c][groups[g].direction] += eta;
+    ind.eta_h[groups[g].direction] += eta;
+    ind.eta_h_rho += d / 2;
+    split += d;
+  }
   difference(z, Rh_z, z_minus_Rz);
   ind.eta_h_split_rest += split - apply(rho_u, z_minus_Rz, false);
   // the Dirichlet data's share, weighted by z itself (u_h interpolates g on Gamma_D)
@@ -166,6 +205,18 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   cells.eta_tau_cell[c] += eta_tau;
   ind.eta_tau_slab[n] += eta_tau;
   ind.eta_tau += eta_tau;
+}
+
+template <int dim> void IndicatorAssembly<dim>::gather_defects(unsigned int n)
+{
+  for (unsigned int g = 0; g < n_groups; ++g)
+    for (unsigned int k = 0; k < n_nodes; ++k)
+    {
+      sv::zero(defect_p);
+      for (const auto &[j, slot] : groups[g].slots)
+        defect_p[j] = hanging.value(n, slot, k);
+      sv::vmult(groups[g].w[k], from_primal, defect_p);
+    }
 }
 
 template <int dim> void IndicatorAssembly<dim>::gather_slab(unsigned int n)

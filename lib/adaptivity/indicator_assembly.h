@@ -3,6 +3,7 @@
 // runs over chunks of cells on several threads. Private to lib/adaptivity.
 #include "adaptivity/cell_kernel.h"
 #include "adaptivity/estimator.h"
+#include "adaptivity/hanging_defect.h"
 #include "adaptivity/spatial_operators.h"
 #include "adaptivity/temporal_reconstruction.h"
 
@@ -26,7 +27,8 @@ public:
                     const std::vector<GoalSpec> &goals, TimeIndicator time_indicator,
                     const HigherOrderPrimal *hi, SpaceIndicator space_indicator,
                     const dealii::Vector<double> &zT, const dealii::Vector<double> &u0,
-                    const DataQuadrature &data_rule);
+                    const DataQuadrature &data_rule,
+                    const HangingDefect<dim> &hanging);
 
   /// Adds the cell's eta_h,i and eta_tau (all slabs) to cells.eta_h_cell and
   /// cells.eta_tau_cell, and its contributions to the sums (per slab, per direction,
@@ -81,6 +83,24 @@ private:
   const unsigned int n_nodes_hi;
   std::vector<std::vector<double>> hi_val, hi_der;
 
+  /// the W-local defects of the cell's groups on slab n (n_groups > 0)
+  void gather_defects(unsigned int n);
+
+  const HangingDefect<dim> &hanging;
+  /// the cell's constrained DoFs (local index, slot), grouped by the direction they
+  /// are charged to; per group the W-local defect at each temporal node (I_h z = R_h z
+  /// minus the groups' defects)
+  struct DefectGroup
+  {
+    unsigned int direction = 0;
+    std::vector<std::pair<unsigned int, unsigned int>> slots;
+    std::vector<dealii::Vector<double>> w;
+  };
+  std::vector<std::pair<unsigned int, unsigned int>> cell_slots;
+  std::vector<DefectGroup> groups; // the first n_groups are the cell's
+  unsigned int n_groups = 0;
+  dealii::Vector<double> defect_p;
+  SlabFunction defect;
   /// the dG(r+1) primal's W-local vectors at its temporal nodes (higher_order)
   std::vector<dealii::Vector<double>> u_hi_nodes;
   dealii::Vector<double> e_prev;

@@ -176,6 +176,13 @@ std::vector<Entry> adaptivity_entries()
        "(loops.csv eta_h_quad). Without it the estimate misses errors of the primal's load "
        "where f varies within a cell (the moving hump's front: doc/results.md, 'Error "
        "control without tuning')."},
+      {"adaptivity", "conforming_weights", "true", m(&S::conforming_weights), boolean,
+       "At hanging nodes the spatial weights z - I_h z use the conforming interpolant of "
+       "the primal space (the hanging-node constraint's value), so that Galerkin "
+       "orthogonality holds and eta_h is exact up to the adjoint's own error; its part on "
+       "the fine cells along a hanging face is charged to the coarse cell across it "
+       "(doc/method.md §7). false: the cell-wise interpolant R_h z, discontinuous at "
+       "hanging nodes (config/hemker*.json keep it: doc/configs.md#hemker)."},
   };
 }
 } // namespace anisodwr::config::table

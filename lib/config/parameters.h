@@ -135,6 +135,8 @@ struct AdaptivitySection : MarkingOptions
   unsigned int data_rule_copies = 3;
   /// eta_h carries the primal's quadrature error in f and u_0
   bool data_quadrature_error = true;
+  /// the spatial weights use the conforming interpolant at hanging nodes
+  bool conforming_weights = true;
 };
 
 struct OutputSection

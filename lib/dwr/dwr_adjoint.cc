@@ -107,7 +107,7 @@ void AdaptiveLoop::estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2
   Timer t;
   ind = estimate(primal, adjoint, mesh, basis, U, adj.Z[0], goals,
                  prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator,
-                 data_quadrature(prm.adaptivity));
+                 data_quadrature(prm.adaptivity), prm.adaptivity.conforming_weights);
   row.t_estimate = t.wall_time();
 }
 
@@ -152,7 +152,7 @@ Indicators<2> AdaptiveLoop::goal_estimate(const Space<2> &primal, const Space<2>
 {
   return estimate(primal, adjoint, mesh, basis, U, Z, {unweighted(goal)},
                   prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator,
-                  data_quadrature(prm.adaptivity));
+                  data_quadrature(prm.adaptivity), prm.adaptivity.conforming_weights);
 }
 
 void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
