@@ -125,17 +125,7 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   gather_slab(n);
 
   slab_function(kernel, basis, tau, z_nodes, z);
-  // R_h z, from R_h applied to z's nodal vectors (R_h acts in space only)
-  for (unsigned int k = 0; k < n_nodes; ++k)
-    sv::vmult(Rz_nodes[k], ops.restriction(dim), z_nodes[k]);
-  // at hanging nodes: the conforming I_h z (adaptivity/hanging_defect.h)
-  if (n_groups)
-  {
-    gather_defects(n);
-    for (unsigned int g = 0; g < n_groups; ++g)
-      for (unsigned int k = 0; k < n_nodes; ++k)
-        sv::subtract(Rz_nodes[k], groups[g].w[k]);
-  }
+  restrict_weights(n);
   slab_function(kernel, basis, tau, Rz_nodes, Rh_z);
   kernel.adjoint_functional(t0, tau, Rz_nodes, Rh_z, false, adjoint_form_Rhz);
   kernel.adjoint_functional(t0, tau, Rz_nodes, Rh_z, true, supg_derivative_Rhz);
@@ -166,18 +156,7 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
     ind.eta_h[i] += eta;
     split += 2 * half_rho;
   }
-  // the hanging-node defects' part of rho(u)(z - I_h z), in the direction along their
-  // coarse face
-  for (unsigned int g = 0; g < n_groups; ++g)
-  {
-    slab_function(kernel, basis, tau, groups[g].w, defect);
-    const double d = apply(rho_u, defect, false),
-                 eta = space_indicator == SpaceIndicator::primal_residual ? d : d / 2;
-    cells.eta_h_cell[c][groups[g].direction] += eta;
-    ind.eta_h[groups[g].direction] += eta;
-    ind.eta_h_rho += d / 2;
-    split += d;
-  }
+  split += add_defect_indicators(tau, c, cells, ind);
   difference(z, Rh_z, z_minus_Rz);
   ind.eta_h_split_rest += split - apply(rho_u, z_minus_Rz, false);
   // the Dirichlet data's share, weighted by z itself (u_h interpolates g on Gamma_D)
@@ -205,6 +184,41 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   cells.eta_tau_cell[c] += eta_tau;
   ind.eta_tau_slab[n] += eta_tau;
   ind.eta_tau += eta_tau;
+}
+
+template <int dim> void IndicatorAssembly<dim>::restrict_weights(unsigned int n)
+{
+  // R_h z from R_h applied to z's nodal vectors (R_h acts in space only); at hanging
+  // nodes the conforming I_h z (adaptivity/hanging_defect.h)
+  for (unsigned int k = 0; k < n_nodes; ++k)
+    sv::vmult(Rz_nodes[k], ops.restriction(dim), z_nodes[k]);
+  if (!n_groups)
+    return;
+  gather_defects(n);
+  for (unsigned int g = 0; g < n_groups; ++g)
+    for (unsigned int k = 0; k < n_nodes; ++k)
+      sv::subtract(Rz_nodes[k], groups[g].w[k]);
+}
+
+template <int dim>
+double IndicatorAssembly<dim>::add_defect_indicators(double tau, unsigned int c,
+                                                     Indicators<dim> &cells,
+                                                     Indicators<dim> &ind)
+{
+  // the hanging-node defects' part of rho(u)(z - I_h z), in the direction along their
+  // coarse face
+  double sum = 0;
+  for (unsigned int g = 0; g < n_groups; ++g)
+  {
+    slab_function(kernel, basis, tau, groups[g].w, defect);
+    const double d = apply(rho_u, defect, false),
+                 eta = space_indicator == SpaceIndicator::primal_residual ? d : d / 2;
+    cells.eta_h_cell[c][groups[g].direction] += eta;
+    ind.eta_h[groups[g].direction] += eta;
+    ind.eta_h_rho += d / 2;
+    sum += d;
+  }
+  return sum;
 }
 
 template <int dim> void IndicatorAssembly<dim>::gather_defects(unsigned int n)

@@ -83,8 +83,15 @@ private:
   const unsigned int n_nodes_hi;
   std::vector<std::vector<double>> hi_val, hi_der;
 
+  /// Rz_nodes = R_h z at the temporal nodes of slab n, the conforming I_h z on cells
+  /// with hanging nodes (the groups' defects subtracted)
+  void restrict_weights(unsigned int n);
   /// the W-local defects of the cell's groups on slab n (n_groups > 0)
   void gather_defects(unsigned int n);
+  /// adds rho(u)(defect) of each group to the cell's eta_h in the group's direction
+  /// (half of it in the average form) and to the sums; returns the sum of rho(u)(defect)
+  double add_defect_indicators(double tau, unsigned int c, Indicators<dim> &cells,
+                               Indicators<dim> &ind);
 
   const HangingDefect<dim> &hanging;
   /// the cell's constrained DoFs (local index, slot), grouped by the direction they
