@@ -31,8 +31,8 @@ IndicatorAssembly<dim>::IndicatorAssembly(
       n_nodes(basis.n_dofs()), n_w(fe_w.n_dofs_per_cell()), zT(zT), u0(u0),
       recon_z(kernel.n_points()), recon_u(kernel.n_points()),
       n_nodes_hi(hi ? hi->basis.n_dofs() : 0), hanging(hanging),
-      defect_p(primal.finite_element().n_dofs_per_cell()), u_hi_nodes(n_nodes_hi), e_prev(n_w),
-      idx_q(adjoint.finite_element().n_dofs_per_cell()), z_nodes(n_nodes),
+      defect_p(primal.finite_element().n_dofs_per_cell()), u_hi_nodes(n_nodes_hi),
+      e_prev(n_w), idx_q(adjoint.finite_element().n_dofs_per_cell()), z_nodes(n_nodes),
       u_nodes(n_nodes), lift_nodes(n_nodes), z_nodes_next(n_nodes), lift_error_last(dim),
       Rz_nodes(n_nodes), z_next(n_w), u_prev(n_w), tmp(n_w), work_T(n_w), work_z(n_w),
       work_u(n_w), lift(dim)
