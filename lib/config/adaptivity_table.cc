@@ -179,10 +179,11 @@ std::vector<Entry> adaptivity_entries()
       {"adaptivity", "conforming_weights", "true", m(&S::conforming_weights), boolean,
        "At hanging nodes the spatial weights z - I_h z use the conforming interpolant of "
        "the primal space (the hanging-node constraint's value), so that Galerkin "
-       "orthogonality holds and eta_h is exact up to the adjoint's own error; its part on "
-       "the fine cells along a hanging face is charged to the coarse cell across it "
-       "(doc/method.md §7). false: the cell-wise interpolant R_h z, discontinuous at "
-       "hanging nodes (config/hemker*.json keep it: doc/configs.md#hemker)."},
+       "orthogonality holds and eta_h is exact up to the adjoint's own error; the defect's "
+       "part stays on the fine cell, in the direction along the coarse face (doc/method.md "
+       "§7). false: the cell-wise interpolant R_h z, discontinuous at hanging nodes (the "
+       "shipped moving-hump and Hemker configs keep it for their documented runs: "
+       "doc/configs.md)."},
   };
 }
 } // namespace anisodwr::config::table
