@@ -156,18 +156,33 @@ bool CellKernel<dim>::dirichlet_data_functionals(
     d.reset(g.size(), nw);
   Vector<double> &c = scratch[0];
   c.reinit(np, true);
+  // g at the slab's temporal nodes, where u_h takes it (slab/slab_operator.cc): the
+  // mismatch below is g_tau - u_h with g_tau = sum_k g(t_k) l_k, the spatial part only.
+  // The temporal part g - g_tau is the primal's temporal error on Gamma_D, which eta_tau
+  // carries; weighed here as well it was counted twice (doc/method.md §6).
+  const auto &s = basis.nodes();
+  std::vector<double> &g_nodes = boundary_scratch;
+  g_nodes.clear();
+  for (const auto &pc : pieces)
+    if (pc.kind == 2)
+      for (unsigned int q = 0; q < pc.JxW.size(); ++q)
+        for (const double sk : s)
+          g_nodes.push_back(scene.boundary_value(pc.x[q], t0 + sk * tau, pc.id));
   for (unsigned int m = 0; m < g.size(); ++m)
   {
-    const double t = t0 + g[m] * tau, wt = tau * omega[m];
+    const double wt = tau * omega[m];
     combine(Un, idx, ell[m], 1., c); // u at the Gauss point, once for all faces
+    auto gk = g_nodes.cbegin();
     for (const auto &pc : pieces)
       if (pc.kind == 2)
         for (unsigned int q = 0; q < pc.JxW.size(); ++q)
         {
-          double uh = 0;
+          double uh = 0, g_tau = 0;
           for (unsigned int l = 0; l < np; ++l)
             uh += c(l) * pc.u_values(l, q);
-          const double mismatch = scene.boundary_value(pc.x[q], t, pc.id) - uh;
+          for (unsigned int k = 0; k < s.size(); ++k, ++gk)
+            g_tau += ell[m][k] * *gk;
+          const double mismatch = g_tau - uh;
           const double a = -wt * pc.JxW[q] * scene.epsilon * mismatch;
           if (a != 0)
             for (unsigned int l = 0; l < nw; ++l)

@@ -87,9 +87,10 @@ public:
                           const std::vector<dealii::Vector<double>> &nodal,
                           const SlabFunction &zt, bool supg, SlabFunctional &A) const;
 
-  /// The Dirichlet data's share of the error, -int_I int_{Gamma_D} eps (g - u) d_n z ds
-  /// dt (the term the error identity gains where u_h interpolates g instead of taking
-  /// it: doc/method.md §6), as functionals of the weight z on the slab, one per
+  /// The Dirichlet data's share of the error, -int_I int_{Gamma_D} eps (g_tau - u) d_n z
+  /// ds dt (the term the error identity gains where u_h interpolates g instead of taking
+  /// it: doc/method.md §6; g_tau interpolates g at the slab's temporal nodes, where u_h
+  /// takes it, so g - g_tau stays with eta_tau), as functionals of the weight z on the slab, one per
   /// direction: a boundary face's share goes to its tangential direction, the one
   /// whose refinement resolves g along the face. False (data untouched) on cells
   /// without Dirichlet faces.
@@ -187,6 +188,7 @@ private:
   std::vector<dealii::types::global_dof_index> idx;
   std::vector<Piece> pieces;
   mutable std::array<dealii::Vector<double>, 3> scratch; // cell-local coefficient buffers
+  mutable std::vector<double> boundary_scratch; // g at the temporal nodes, per face point
   mutable std::array<std::vector<dealii::Vector<double>>, 2> nodal_scratch;
 
   /// For coefficients constant in time, A(.)(z) and S'(., z) are cell matrices applied
