@@ -477,7 +477,7 @@ TEST(Estimator, GalerkinOrthogonalityAtHangingNodes)
   }
 }
 
-// The Dirichlet data's share of eta_h (eta_h_data, doc/method.md §6) weighs the spatial
+// The Dirichlet data's share of eta_h (eta_h_data, doc/method.md §8) weighs the spatial
 // mismatch g_tau - u_h only, g_tau interpolating g at the slab's temporal nodes where u_h
 // takes it: the temporal part g - g_tau is the primal's temporal error, which eta_tau
 // carries. Heat problem with boundary data g = (1 + x + 2y) t^3 (Q1 interpolates it

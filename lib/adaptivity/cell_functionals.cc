@@ -159,7 +159,7 @@ bool CellKernel<dim>::dirichlet_data_functionals(
   // g at the slab's temporal nodes, where u_h takes it (slab/slab_operator.cc): the
   // mismatch below is g_tau - u_h with g_tau = sum_k g(t_k) l_k, the spatial part only.
   // The temporal part g - g_tau is the primal's temporal error on Gamma_D, which eta_tau
-  // carries; weighed here as well it was counted twice (doc/method.md §6).
+  // carries; weighed here as well it was counted twice (doc/method.md §8).
   const auto &s = basis.nodes();
   std::vector<double> &g_nodes = boundary_scratch;
   g_nodes.clear();
