@@ -90,9 +90,9 @@ public:
   /// The Dirichlet data's share of the error, -int_I int_{Gamma_D} eps (g_tau - u) d_n z
   /// ds dt (the term the error identity gains where u_h interpolates g instead of taking
   /// it: doc/method.md §8; g_tau interpolates g at the slab's temporal nodes, where u_h
-  /// takes it, so g - g_tau stays with eta_tau), as functionals of the weight z on the slab, one per
-  /// direction: a boundary face's share goes to its tangential direction, the one
-  /// whose refinement resolves g along the face. False (data untouched) on cells
+  /// takes it, so g - g_tau stays with eta_tau), as functionals of the weight z on the
+  /// slab, one per direction: a boundary face's share goes to its tangential direction,
+  /// the one whose refinement resolves g along the face. False (data untouched) on cells
   /// without Dirichlet faces.
   bool dirichlet_data_functionals(double t0, double tau, const dealii::Vector<double> &Un,
                                   std::array<SlabFunctional, dim> &data) const;

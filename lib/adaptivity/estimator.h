@@ -63,8 +63,8 @@ template <int dim> struct Indicators
   /// sum_i rho(u)(z - R_i z) - rho(u)(z - R_h z) (= rho(u)((I - R_1)(I - R_2) z) in 2D),
   /// the mixed-direction remainder that doc/method.md §6 does not keep
   double eta_h_split_rest = 0;
-  /// the Dirichlet data's share of eta_h, -int_I int_{Gamma_D} eps (g - u) d_n z
-  /// (included in eta_h; zero where u_h takes g exactly)
+  /// the Dirichlet data's share of eta_h, -int_I int_{Gamma_D} eps (g_tau - u) d_n z
+  /// (included in eta_h; zero where u_h takes g_tau, g at the temporal nodes, exactly)
   double eta_h_data = 0;
   /// the primal's quadrature error in f and u_0: (f, R_h z + delta b.grad R_h z) and
   /// (u_0, ...) on the estimator's data rule minus the same on the primal's

@@ -136,8 +136,9 @@ std::vector<Entry> adaptivity_entries()
        "u) + SUPG terms (doc/method.md §8; where a cell has no directional lift only the primal "
        "half); primal_residual: rho(u)(z - R_i z) + S(u)(R_h z), the primal residual "
        "alone, which needs no lift of u (the default: doc/results.md, 'Error control "
-       "without tuning'). Both carry the Dirichlet data's share -int eps (g - u_h) d_n z "
-       "on Gamma_D (loops.csv eta_h_data)."},
+       "without tuning'). Both carry the Dirichlet data's share -int eps (g_tau - u_h) d_n z "
+       "on Gamma_D, g_tau interpolating g at the slab's temporal nodes (loops.csv "
+       "eta_h_data)."},
       {"adaptivity", "adjoint_stabilization", "transposed", m(&S::adjoint_stabilization),
        by_name,
        "transposed: the adjoint is the transpose of the SUPG-stabilized primal operator "
