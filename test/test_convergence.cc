@@ -168,6 +168,11 @@ TEST(Scenes, RhsMatchesPdeResidualOfExactSolution)
         const double f_fd = ut - sc->epsilon * lap + b[0] * ux + b[1] * uy +
                             sc->reaction(x, t) * U(0, 0, 0);
         EXPECT_NEAR(sc->rhs(x, t), f_fd, 1e-4 * (1 + std::abs(f_fd))) << scene << " " << v;
+        // Scene::rhs takes a separable u's factors once each: the same value as from the
+        // four pointwise derivatives
+        const double f_pw = u.time_derivative(x, t) - sc->epsilon * u.laplacian(x, t) +
+                            b * u.gradient(x, t) + sc->reaction(x, t) * u.value(x, t);
+        EXPECT_NEAR(sc->rhs(x, t), f_pw, 1e-14 * (1 + std::abs(f_pw))) << scene << " " << v;
         if (separable)
         {
           double f = 0;

@@ -48,6 +48,15 @@ public:
     throw not_separable();
   }
   virtual double space_laplacian(const dealii::Point<dim> &) const { throw not_separable(); }
+  /// S, grad S and Lap S at once (Scene::rhs at every quadrature point of a load with
+  /// coefficients that depend on t); override where the three share their work.
+  virtual void space_jet(const dealii::Point<dim> &x, double &value,
+                         dealii::Tensor<1, dim> &gradient, double &laplacian) const
+  {
+    value = space_value(x);
+    gradient = space_gradient(x);
+    laplacian = space_laplacian(x);
+  }
 
 private:
   static std::logic_error not_separable()

@@ -210,6 +210,15 @@ double SeparableSolution::space_laplacian(const dealii::Point<2> &p) const
 {
   return X.ddf(p[0]) * Y.f(p[1]) + X.f(p[0]) * Y.ddf(p[1]);
 }
+void SeparableSolution::space_jet(const dealii::Point<2> &p, double &value,
+                                  dealii::Tensor<1, 2> &gradient, double &laplacian) const
+{
+  const double x = X.f(p[0]), dx = X.df(p[0]), y = Y.f(p[1]), dy = Y.df(p[1]);
+  value = x * y;
+  gradient[0] = dx * y;
+  gradient[1] = x * dy;
+  laplacian = X.ddf(p[0]) * y + x * Y.ddf(p[1]);
+}
 double SeparableSolution::value(const dealii::Point<2> &p, double t) const
 {
   return space_value(p) * T(t);

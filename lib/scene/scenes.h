@@ -100,6 +100,8 @@ public:
   double space_value(const dealii::Point<2> &p) const override;
   dealii::Tensor<1, 2> space_gradient(const dealii::Point<2> &p) const override;
   double space_laplacian(const dealii::Point<2> &p) const override;
+  void space_jet(const dealii::Point<2> &p, double &value, dealii::Tensor<1, 2> &gradient,
+                 double &laplacian) const override;
 
 private:
   Factor X, Y;
