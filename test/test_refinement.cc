@@ -1,8 +1,11 @@
 // Marking and mesh closure: the cell marking cuts each marked cell only in the
 // directions it needs, the statistics count what was flagged, and the closure of a
 // hanging-node chain on an anisotropic mesh refines the coarser cell only in the
-// direction the chain needs; cells where u_h leaves its bounds are halved along b.
+// direction the chain needs; cells where u_h leaves its bounds are halved along b; the
+// a priori wall layer thins the cells at outflow Dirichlet faces to eps / (b.n).
 #include "adaptivity/refinement.h"
+#include "config/parameters.h"
+#include "scene/scene_registry.h"
 
 #include <deal.II/dofs/dof_accessor.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -358,4 +361,82 @@ TEST(BoundRefinement, AFlagSetByTheMarkingGetsTheUnionOfBothCuts)
     }
   }
   EXPECT_EQ(add_cuts(m.tria, cuts), 0u); // nothing left to add
+}
+
+// discretization.wall_layer on Hemker's mesh: eps = 1e-6, b = (1, 0); u = 1 on the
+// circle. The front half of the circle is outflow for the domain (b.n = -x/|x| > 0),
+// the rear half and the inflow x = -3 are not.
+namespace
+{
+struct WallCell
+{
+  double thickness, bn;
+  dealii::types::boundary_id id;
+};
+/// Every (active cell, Dirichlet face) pair: the cell's thickness across the face and
+/// b.n with n the outward normal (the circle's at the face centre).
+std::vector<WallCell> wall_cells(const Triangulation<2> &tria)
+{
+  std::vector<WallCell> w;
+  for (const auto &cell : tria.active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+      if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() <= 1)
+      {
+        const double bn = -cell->face(f)->center()[0] / cell->face(f)->center().norm();
+        w.push_back({cell->face(f)->center().distance(cell->face(f ^ 1u)->center()),
+                     cell->face(f)->boundary_id() == 1 ? bn : -1., // x = -3: inflow
+                     cell->face(f)->boundary_id()});
+      }
+  return w;
+}
+} // namespace
+
+TEST(WallLayer, OutflowDirichletCellsGetTheLayerScaleAndNothingElseChanges)
+{
+  const auto scene = create_scene<2>(
+      Parameters::from_overrides({"scene.name=hemker", "scene.epsilon=1e-6"}).scene);
+  Triangulation<2> plain, layered;
+  for (Triangulation<2> *t : {&plain, &layered})
+  {
+    scene->make_coarse_grid(*t);
+    t->refine_global(2);
+  }
+  EXPECT_EQ(refine_wall_layer(layered, *scene, 0., 9.).passes, 0u);
+  EXPECT_EQ(layered.n_active_cells(), plain.n_active_cells());
+
+  const WallLayer w = refine_wall_layer(layered, *scene, 2., 9.);
+  EXPECT_EQ(w.cells_before, plain.n_active_cells());
+  EXPECT_EQ(w.cells_after, layered.n_active_cells());
+  // the thinnest target is 2 eps / max b.n over the circle's face centres (< 1)
+  EXPECT_GE(w.thinnest_target, 2e-6);
+  EXPECT_LT(w.thinnest_target, 2e-6 / 0.99);
+  // cells of about 0.5 at the front: log2(0.5 / 2e-6) = 17.9 halvings
+  EXPECT_GE(w.passes, 17u);
+  EXPECT_LE(w.passes, 19u);
+
+  double front_min = 1., rear_min_plain = 1., rear_min = 1., inflow_min_plain = 1.,
+         inflow_min = 1.;
+  for (const WallCell &c : wall_cells(layered))
+  {
+    if (c.id == 1 && c.bn > 0.)
+    {
+      EXPECT_LE(c.thickness, 2e-6 / c.bn * (1. + 1e-9));
+      front_min = std::min(front_min, c.thickness);
+    }
+    else if (c.id == 1 && c.bn < -0.2) // the closure grades the cells near the top
+      rear_min = std::min(rear_min, c.thickness);
+    else if (c.id == 0)
+      inflow_min = std::min(inflow_min, c.thickness);
+  }
+  for (const WallCell &c : wall_cells(plain))
+    if (c.id == 0)
+      inflow_min_plain = std::min(inflow_min_plain, c.thickness);
+    else if (c.bn < -0.2)
+      rear_min_plain = std::min(rear_min_plain, c.thickness);
+  // halved until just below the target, not further (a factor 2 per pass)
+  EXPECT_GT(front_min, 0.5e-6);
+  // the inflow boundary and the rear half of the circle (away from its top, where
+  // deal.II's closure grades the cells next to the thinned ones): as without the layer
+  EXPECT_DOUBLE_EQ(inflow_min, inflow_min_plain);
+  EXPECT_DOUBLE_EQ(rear_min, rear_min_plain);
 }

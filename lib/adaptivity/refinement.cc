@@ -1,4 +1,6 @@
 #include "adaptivity/refinement.h"
+#include "base/errors.h"
+#include "scene/scene.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_accessor.h>
@@ -8,6 +10,8 @@
 #include <deal.II/grid/tria_iterator.h>
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 #include <array>
 #include <cmath>
 #include <numeric>
@@ -298,6 +302,88 @@ unsigned int add_cuts(Triangulation<dim> &tria, const std::vector<unsigned char>
     }
   }
   return changed;
+}
+
+namespace
+{
+/// The target thickness of `cell` across its face `f` if that face is an outflow part
+/// of the Dirichlet boundary (b.n > 0 at the face's centre at t = 0, T/2 or T, n the
+/// outward normal of the straight face): factor eps / max_t b.n; 0 otherwise.
+double wall_target(const Triangulation<2>::active_cell_iterator &cell, unsigned int f,
+                   const Scene<2> &scene, double factor, double end_time)
+{
+  const auto face = cell->face(f);
+  if (!face->at_boundary() || !scene.dirichlet_ids.count(face->boundary_id()))
+    return 0.;
+  const Tensor<1, 2> t = face->vertex(1) - face->vertex(0);
+  Tensor<1, 2> n({t[1], -t[0]});
+  n /= n.norm();
+  if (n * (face->center() - cell->center()) < 0.)
+    n = -n;
+  double bn = 0.;
+  for (const double time : {0., 0.5 * end_time, end_time})
+    bn = std::max(bn, scene.convection(face->center(), time) * n);
+  return bn > 0. ? factor * scene.epsilon / bn : 0.;
+}
+} // namespace
+
+WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, double factor,
+                            double end_time)
+{
+  WallLayer w;
+  w.cells_before = w.cells_after = tria.n_active_cells();
+  if (!(factor > 0.))
+    return w;
+  for (;;)
+  {
+    unsigned int flagged = 0;
+    for (const auto &cell : tria.active_cell_iterators())
+    {
+      RefinementCase<2> cut = RefinementCase<2>::no_refinement;
+      for (const unsigned int f : cell->face_indices())
+      {
+        const double target = wall_target(cell, f, scene, factor, end_time);
+        if (target > 0. && cell->face(f)->center().distance(cell->face(f ^ 1u)->center()) >
+                               target)
+        {
+          cut = cut | RefinementCase<2>::cut_axis(f / 2);
+          w.thinnest_target = w.thinnest_target > 0. ? std::min(w.thinnest_target, target)
+                                                     : target;
+        }
+      }
+      if (cut != RefinementCase<2>::no_refinement)
+      {
+        cell->set_refine_flag(cut);
+        ++flagged;
+      }
+    }
+    if (flagged == 0)
+      break;
+    if (w.passes == WallLayer::max_passes)
+      throw InputError("discretization.wall_layer = " + std::to_string(factor) +
+                       ": the cells at the outflow Dirichlet boundary are still thicker "
+                       "than wall_layer * eps / (b.n) after " +
+                       std::to_string(WallLayer::max_passes) +
+                       " halvings (eps = " + std::to_string(scene.epsilon) +
+                       "); expected a layer that " + std::to_string(WallLayer::max_passes) +
+                       " halvings of the initial cells resolve (a larger wall_layer, or 0)");
+    tria.execute_coarsening_and_refinement();
+    ++w.passes;
+  }
+  w.cells_after = tria.n_active_cells();
+  return w;
+}
+
+std::string wall_layer_text(const WallLayer &w)
+{
+  if (w.passes == 0)
+    return "wall layer: no outflow Dirichlet face is thicker than its target, mesh "
+           "unchanged";
+  std::ostringstream s;
+  s << "wall layer: " << w.passes << " halvings at the outflow Dirichlet boundary, cells "
+    << w.cells_before << " -> " << w.cells_after << ", thinnest target "
+    << std::setprecision(3) << w.thinnest_target;
+  return s.str();
 }
 
 template std::vector<unsigned char>

@@ -19,6 +19,8 @@
 
 namespace anisodwr
 {
+template <int dim> class Scene;
+
 /// What the marking did, counted on the active cells before refinement.
 struct MarkingStats
 {
@@ -70,6 +72,33 @@ cells_out_of_bounds(const dealii::DoFHandler<dim> &dofs,
 /// number of cells whose flag changed.
 template <int dim>
 unsigned int add_cuts(dealii::Triangulation<dim> &tria, const std::vector<unsigned char> &cuts);
+
+/// What refine_wall_layer did.
+struct WallLayer
+{
+  static constexpr unsigned int max_passes = 40;
+  unsigned int passes = 0;
+  unsigned int cells_before = 0, cells_after = 0;
+  /// the smallest target thickness eps_factor eps / (b.n) of a halved cell (0: none)
+  double thinnest_target = 0.;
+};
+
+/// A priori layer mesh at the outflow Dirichlet boundary (discretization.wall_layer):
+/// where Dirichlet data meets a flow that leaves the domain (b.n > 0 at a boundary
+/// face's centre at t = 0, T/2 or T) the solution has an exponential layer of length
+/// scale eps / (b.n). Halves the active cells at such faces across the face
+/// (anisotropically, along the cell's local axis normal to it), pass after pass, until
+/// each is at most factor eps / (b.n) thick there (the distance of the centres of the
+/// wall face and the opposite face). Only the cells at the wall are halved, so the
+/// thickness grows by 2 per cell away from it; deal.II adds the tangential cuts that
+/// keep a curved wall's thin cells undistorted. Throws InputError (naming the key)
+/// after WallLayer::max_passes passes. factor <= 0: nothing.
+WallLayer refine_wall_layer(dealii::Triangulation<2> &tria, const Scene<2> &scene,
+                            double factor, double end_time);
+
+/// One line for the run's output: "wall layer: P halvings, cells A -> B, thinnest
+/// target W" (or that no face is an outflow Dirichlet face).
+std::string wall_layer_text(const WallLayer &w);
 
 /// Bisects the ceil(theta_tau N) slabs with the largest |eta_tau^n| (none if theta_tau =
 /// 0).

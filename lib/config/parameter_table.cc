@@ -143,6 +143,14 @@ std::vector<Entry> discretization_entries()
       {"discretization", "initial_refinements", "2", m(&S::initial_refinements),
        integer(0, 14),
        "Global refinements of the scene's coarse mesh (unit square: 2 gives 4x4 cells)."},
+      {"discretization", "wall_layer", "0", m(&S::wall_layer), real(0.),
+       "A priori layer mesh where Dirichlet data meets outflow (b.n > 0 at a boundary "
+       "face at t = 0, T/2 or T; there u has an exponential layer of width about "
+       "eps / (b.n)): after the initial refinements the cells at such faces are halved "
+       "across the wall until they are at most wall_layer * eps / (b.n) thick, so the "
+       "first DWR loop already resolves the layer that a same-mesh adjoint cannot see "
+       "(doc/method.md, 'A priori wall layer'). 0 = off; 1 resolves the layer's length "
+       "scale. study.mode = dwr and single only."},
       {"discretization", "n_slabs", "5", m(&S::n_slabs), integer(1, 1000000),
        "Number of equal time slabs."},
       {"discretization", "mapping_degree", "0", m(&S::mapping_degree), integer(0, 4),

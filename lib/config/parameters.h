@@ -64,6 +64,8 @@ struct DiscretizationSection : Stabilization
   unsigned int r = 0;
   double growth_limit = 1e4;
   unsigned int initial_refinements = 2;
+  /// a priori layer mesh at the outflow Dirichlet boundary (adaptivity/refinement.h)
+  double wall_layer = 0.;
   unsigned int n_slabs = 5;
   /// MappingQ degree of the cells; 0 = auto_mapping_degree (space/space.h)
   unsigned int mapping_degree = 0;

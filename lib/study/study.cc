@@ -2,6 +2,7 @@
 
 #include "base/errors.h"
 #include "base/mpi.h"
+#include "adaptivity/refinement.h"
 #include "io/table.h"
 #include "io/vtu.h"
 #include "scene/scene.h"
@@ -79,6 +80,10 @@ LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned i
   Triangulation<2> tria;
   scene.make_coarse_grid(tria);
   tria.refine_global(refinements);
+  if (prm.study.mode == StudyMode::single && prm.discretization.wall_layer > 0.)
+    std::cout << wall_layer_text(refine_wall_layer(tria, scene, prm.discretization.wall_layer,
+                                                   scene.end_time))
+              << "\n";
   const auto space_ptr = make_space(prm, scene, tria, prm.discretization.p);
   const Space<2> &space = *space_ptr;
   const MemoryModel model = memory_model(prm, space, nullptr, n_slabs, base_mb);
@@ -172,6 +177,9 @@ void run_study(const Parameters &prm)
   const MemoryLimit limit = memory_limit(prm);
   std::vector<LevelResult> levels;
   write_summary(prm, levels, "running", 0.);
+  if (prm.study.mode == StudyMode::convergence && prm.discretization.wall_layer > 0.)
+    std::cerr << "anisodwr: warning: discretization.wall_layer is ignored by study.mode = "
+                 "convergence (its levels are uniform refinements)\n";
   try
   {
     if (prm.study.mode == StudyMode::single)
