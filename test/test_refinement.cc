@@ -4,6 +4,7 @@
 // direction the chain needs; cells where u_h leaves its bounds are halved along b; the
 // a priori wall layer thins the cells at outflow Dirichlet faces to eps / (b.n).
 #include "adaptivity/refinement.h"
+#include "base/errors.h"
 #include "config/parameters.h"
 #include "scene/scene_registry.h"
 
@@ -439,4 +440,25 @@ TEST(WallLayer, OutflowDirichletCellsGetTheLayerScaleAndNothingElseChanges)
   // deal.II's closure grades the cells next to the thinned ones): as without the layer
   EXPECT_DOUBLE_EQ(inflow_min, inflow_min_plain);
   EXPECT_DOUBLE_EQ(rear_min, rear_min_plain);
+}
+
+TEST(WallLayer, ALayerBeyondThirtyHalvingsIsAnInputErrorBeforeTheMeshGrows)
+{
+  const auto scene = create_scene<2>(
+      Parameters::from_overrides({"scene.name=hemker", "scene.epsilon=1e-16"}).scene);
+  Triangulation<2> tria;
+  scene->make_coarse_grid(tria);
+  tria.refine_global(2);
+  const unsigned int cells = tria.n_active_cells();
+  try
+  {
+    refine_wall_layer(tria, *scene, 1., 9.); // log2(0.5 / 1e-16) = 52 halvings
+    FAIL() << "expected an InputError";
+  }
+  catch (const InputError &e)
+  {
+    EXPECT_NE(std::string(e.what()).find("discretization.wall_layer"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("at most 30"), std::string::npos);
+  }
+  EXPECT_EQ(tria.n_active_cells(), cells);
 }

@@ -76,10 +76,10 @@ unsigned int add_cuts(dealii::Triangulation<dim> &tria, const std::vector<unsign
 /// What refine_wall_layer did.
 struct WallLayer
 {
-  static constexpr unsigned int max_passes = 40;
+  static constexpr unsigned int max_passes = 30;
   unsigned int passes = 0;
   unsigned int cells_before = 0, cells_after = 0;
-  /// the smallest target thickness eps_factor eps / (b.n) of a halved cell (0: none)
+  /// the smallest target thickness factor eps / (b.n) of a halved cell (0: none)
   double thinnest_target = 0.;
 };
 
@@ -91,8 +91,9 @@ struct WallLayer
 /// each is at most factor eps / (b.n) thick there (the distance of the centres of the
 /// wall face and the opposite face). Only the cells at the wall are halved, so the
 /// thickness grows by 2 per cell away from it; deal.II adds the tangential cuts that
-/// keep a curved wall's thin cells undistorted. Throws InputError (naming the key)
-/// after WallLayer::max_passes passes. factor <= 0: nothing.
+/// keep a curved wall's thin cells undistorted. Throws InputError (naming the key),
+/// before refining, if a wall cell needs more than WallLayer::max_passes halvings.
+/// factor <= 0: nothing.
 WallLayer refine_wall_layer(dealii::Triangulation<2> &tria, const Scene<2> &scene,
                             double factor, double end_time);
 

@@ -108,13 +108,13 @@ void AdaptiveLoop::run()
       }
     print_run_line(std::cout, prm, *scene, q, goals, J_exact, has_exact,
                    mapping_degree(prm, tria));
-    print_loop_header(std::cout);
     tria.refine_global(prm.discretization.initial_refinements);
     if (prm.discretization.wall_layer > 0.)
       std::cout << wall_layer_text(refine_wall_layer(tria, *scene,
                                                      prm.discretization.wall_layer,
                                                      scene->end_time))
                 << "\n";
+    print_loop_header(std::cout);
     base_mb = mpi_max(resident_memory_mb());
     for (unsigned int loop = 1; loop <= prm.adaptivity.loops; ++loop)
     {

@@ -107,23 +107,35 @@ void KronBlocks::reinit(const std::vector<KronTerm> &terms)
     for (unsigned int p = 0; p < pattern.row_length(i); ++p)
       cols[rowstart[i] + p] = pattern.column_number(i, p);
   }
-  const std::size_t mm = std::size_t(m) * m;
-  blocks.assign(cols.size() * mm, 0.);
-  std::vector<double> T(mm);
-  for (const auto &t : terms)
-  {
+  // Every block summed once, over the terms in their order, with the terms' rows walked
+  // side by side: one write per block entry instead of a read-modify-write per term.
+  const std::size_t mm = std::size_t(m) * m, nt = terms.size();
+  std::vector<double> T(nt * mm), s(nt);
+  for (std::size_t t = 0; t < nt; ++t)
     for (unsigned int k = 0; k < m; ++k)
       for (unsigned int l = 0; l < m; ++l)
-        T[k * m + l] = t.T(k, l);
-    for (std::size_t i = 0; i < n; ++i)
+        T[t * mm + k * m + l] = terms[t].T(k, l);
+  blocks.resize(cols.size() * mm);
+  std::vector<SparseMatrix<double>::const_iterator> row;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    row.clear();
+    for (const auto &t : terms)
+      row.push_back(t.S->begin(i));
+    for (std::size_t q = rowstart[i]; q < rowstart[i + 1]; ++q)
     {
-      std::size_t q = rowstart[i];
-      for (auto it = t.S->begin(i); it != t.S->end(i); ++it, ++q)
+      for (std::size_t t = 0; t < nt; ++t)
       {
-        const double s = it->value();
-        double *b = blocks.data() + q * mm;
-        for (std::size_t e = 0; e < mm; ++e)
-          b[e] += T[e] * s;
+        s[t] = row[t]->value();
+        ++row[t];
+      }
+      double *b = blocks.data() + q * mm;
+      for (std::size_t e = 0; e < mm; ++e)
+      {
+        double v = 0.;
+        for (std::size_t t = 0; t < nt; ++t)
+          v += T[t * mm + e] * s[t];
+        b[e] = v;
       }
     }
   }
