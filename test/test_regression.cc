@@ -216,6 +216,30 @@ TEST(Anisotropy, BoundaryLayerRefinesAcrossTheLayerOnly)
   EXPECT_LT(t.back().at("J_error"), 0.1 * t.front().at("J_error"));
 }
 
+TEST(WallLayer, BoundaryLayerIsResolvedBeforeTheFirstLoop)
+{
+  // discretization.wall_layer = 1 on boundary_layer (eps = 1e-3, b = (1, 0), Dirichlet
+  // outflow at x = 1): the 4 cells at x = 1 of the 4 x 4 mesh are halved 8 times (0.25 /
+  // 2^8 <= 1e-3 < 0.25 / 2^7): 48 cells, 5 x 5 + 8 x 5 = 65 Q1 DoFs at loop 1
+  const std::string plain = "regression_wall_layer_off", layered = "regression_wall_layer";
+  ASSERT_EQ(run("boundary_layer.json", plain, "--set adaptivity.loops=4"), 0);
+  ASSERT_EQ(run("boundary_layer.json", layered,
+                "--set adaptivity.loops=4 --set discretization.wall_layer=1"),
+            0);
+  const Table p = read_csv(plain + "/loops.csv"), w = read_csv(layered + "/loops.csv");
+  ASSERT_EQ(w.size(), 4u);
+  EXPECT_EQ(w[0].at("N_space"), 65.);
+  EXPECT_EQ(p[0].at("N_space"), 25.);
+  // the layer resolved: loop 1's error a twentieth of the plain mesh's or less, and the
+  // estimate of the right size from loop 1 on
+  EXPECT_LT(w[0].at("J_error"), 0.05 * p[0].at("J_error"));
+  for (const auto &row : w)
+  {
+    EXPECT_GT(row.at("I_eff"), 0.8) << "loop " << row.at("loop");
+    EXPECT_LT(row.at("I_eff"), 2.5) << "loop " << row.at("loop");
+  }
+}
+
 TEST(Budget, DofBudgetStopsCleanlyAndKeepsRows)
 {
   const std::string dir = "regression_budget";
