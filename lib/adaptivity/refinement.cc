@@ -325,6 +325,13 @@ double wall_target(const Triangulation<2>::active_cell_iterator &cell, unsigned 
     bn = std::max(bn, scene.convection(face->center(), time) * n);
   return bn > 0. ? factor * scene.epsilon / bn : 0.;
 }
+
+/// The thickness of `cell` across its face `f`: the distance of the centres of that face
+/// and the opposite one.
+double thickness_across(const Triangulation<2>::active_cell_iterator &cell, unsigned int f)
+{
+  return cell->face(f)->center().distance(cell->face(f ^ 1u)->center());
+}
 } // namespace
 
 WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, double factor,
@@ -339,8 +346,7 @@ WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, doubl
   for (const auto &cell : tria.active_cell_iterators())
     for (const unsigned int f : cell->face_indices())
       if (const double target = wall_target(cell, f, scene, factor, end_time); target > 0.)
-        ratio = std::max(ratio, cell->face(f)->center().distance(cell->face(f ^ 1u)->center()) /
-                                    target);
+        ratio = std::max(ratio, thickness_across(cell, f) / target);
   if (std::log2(ratio) > WallLayer::max_passes)
   {
     std::ostringstream m;
@@ -359,8 +365,7 @@ WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, doubl
       for (const unsigned int f : cell->face_indices())
       {
         const double target = wall_target(cell, f, scene, factor, end_time);
-        if (target > 0. && cell->face(f)->center().distance(cell->face(f ^ 1u)->center()) >
-                               target)
+        if (target > 0. && thickness_across(cell, f) > target)
         {
           cut = cut | RefinementCase<2>::cut_axis(f / 2);
           w.thinnest_target = w.thinnest_target > 0. ? std::min(w.thinnest_target, target)
@@ -375,7 +380,9 @@ WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, doubl
     }
     if (flagged == 0)
       break;
-    if (w.passes > WallLayer::max_passes) // the closure's cuts can thin by more than 2
+    // a bound beside the check above: the closure's tangential cuts tilt a curved wall's
+    // faces, which changes b.n and so the targets of the cells they leave
+    if (w.passes > WallLayer::max_passes)
       break;
     tria.execute_coarsening_and_refinement();
     ++w.passes;
