@@ -223,6 +223,35 @@ TEST(Iterative, FrozenModesPreconditionerAgreesWithDirect)
   EXPECT_EQ(it.timings().n_frozen_factorizations, 1u);
 }
 
+// GMRES with the frozen modes runs on deal.II's GMRES (no Trilinos, so the DWR loop's
+// marches may solve in two threads); Belos' flexible GMRES with the same fixed
+// preconditioner is the same method: on a rotating march of 8 slabs (r = 2, primal and
+// transposed) the two agree with the direct solve to 1e-8 and with each other in their
+// iteration counts to within one per solve.
+TEST(Iterative, FrozenModesGmresWithoutTrilinosMatchesBelos)
+{
+  EXPECT_TRUE(IterativeSlabSolver::runs_without_trilinos(
+      iterative("gmres", "modes", 1e-12).iterative));
+  EXPECT_FALSE(IterativeSlabSolver::runs_without_trilinos(
+      iterative("fgmres", "modes", 1e-12).iterative));
+  EXPECT_FALSE(IterativeSlabSolver::runs_without_trilinos(
+      iterative("gmres", "kronecker", 1e-12).iterative));
+  for (const bool adjoint : {false, true})
+  {
+    SlabProblem s("manufactured", "rotating", adjoint ? 2 : 1, 1e-2);
+    const TemporalBasis basis(2);
+    const SlabTimings native =
+        march_beside_direct(s, basis, iterative("gmres", "modes", 1e-12), adjoint, 41);
+    const SlabTimings belos =
+        march_beside_direct(s, basis, iterative("fgmres", "modes", 1e-12), adjoint, 41);
+    EXPECT_EQ(native.n_krylov_solves, belos.n_krylov_solves);
+    EXPECT_EQ(native.n_fallbacks + belos.n_fallbacks, 0u);
+    EXPECT_LE(std::abs(double(native.krylov_iterations) - double(belos.krylov_iterations)),
+              double(native.n_krylov_solves))
+        << native.krylov_iterations << " against " << belos.krylov_iterations;
+  }
+}
+
 // Coefficients that depend on time: the spatial matrices interpolated in time from the
 // Chebyshev points of [0, T] where the interpolant is exact. Manufactured "rotating"
 // (b = (1+t) b0, alpha = 1+t: with SUPG the matrices are quadratic in t): the slab
@@ -358,7 +387,8 @@ TEST(Iterative, AutoPicksBySlabSizeWhenEachSlabIsFactorized)
 
 // solver.type = auto on coefficients that depend on time: Krylov preconditioned by the
 // frozen operator's modes while their predicted peak fits; not with MUMPS, not for
-// direct_only (concurrent marches), and not with coefficients constant in time.
+// with coefficients constant in time; also for no_trilinos (concurrent marches: it runs
+// on deal.II's GMRES), where auto's Trilinos-preconditioned Krylov path is not picked.
 TEST(Iterative, AutoPicksFrozenModesWhereCoefficientsDependOnTime)
 {
   SlabProblem s("manufactured", "rotating", 1, 1e-2);
@@ -383,8 +413,9 @@ TEST(Iterative, AutoPicksFrozenModesWhereCoefficientsDependOnTime)
   mumps.direct_solver = DirectEngine::mumps;
   EXPECT_FALSE(auto_picks_frozen_modes(mumps, n, 2, 1, false));
   SlabSolverOptions only = o;
-  only.direct_only = true;
-  EXPECT_FALSE(auto_picks_frozen_modes(only, n, 2, 1, false));
+  only.no_trilinos = true;
+  EXPECT_TRUE(auto_picks_frozen_modes(only, n, 2, 1, false));
+  EXPECT_TRUE(solves_without_trilinos(only, n, 2, 1, false));
   EXPECT_TRUE(solves_iteratively(o, n, 2, 1, false));
   EXPECT_TRUE(solves_by_frozen_modes(o, n, 2, 1, false));
 }

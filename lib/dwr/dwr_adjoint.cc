@@ -31,10 +31,11 @@ SlabSolverOptions AdaptiveLoop::march_solver_options(unsigned int loop,
   SlabSolverOptions o = slab_solver_options(prm);
   if (concurrent)
   {
-    // no Krylov solves in two threads: auto stays with a direct solver (modes or the
-    // coupled UMFPACK)
-    o.direct_only = true;
-    if (o.type == SolverType::iterative)
+    // no Trilinos in two threads: auto picks a direct solver (modes or the coupled
+    // UMFPACK) or the frozen operator's modes with deal.II's GMRES
+    o.no_trilinos = true;
+    if (o.type == SolverType::iterative &&
+        !IterativeSlabSolver::runs_without_trilinos(o.iterative))
       o.type = SolverType::direct;
   }
   if (loop > 0 && loop == prm.output.dump_slab_loop)
@@ -178,9 +179,13 @@ bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
       prm.adaptivity.concurrent_marches &&
       mpi_ranks() == 1 &&
       MultithreadInfo::n_threads() > 1 && options.direct_solver == DirectEngine::umfpack &&
-      !model.primal.iterative && !model.adjoint.iterative &&
-      !(higher_order && solves_iteratively(options, primal.n_dofs(), prm.discretization.r + 2,
-                                           primal.degree(), !model.time_dependent));
+      solves_without_trilinos(options, primal.n_dofs(), prm.discretization.r + 1,
+                              primal.degree(), !model.time_dependent) &&
+      solves_without_trilinos(options, adjoint.n_dofs(), prm.discretization.r + 1,
+                              adjoint.degree(), !model.time_dependent) &&
+      !(higher_order &&
+        !solves_without_trilinos(options, primal.n_dofs(), prm.discretization.r + 2,
+                                 primal.degree(), !model.time_dependent));
   row.mem_estimate = estimate_memory(model).total_mb;
   if (model.concurrent && row.mem_estimate * mem_ratio > mem_limit.mb)
   {

@@ -1,5 +1,6 @@
 #include "slab/auto_solver.h"
 
+#include "solver/iterative_solver.h"
 #include "solver/temporal_schur.h"
 #include "time/temporal_basis.h"
 
@@ -216,7 +217,7 @@ bool releases_assembly_matrices(const SlabSolverOptions &options,
 bool auto_picks_frozen_modes(const SlabSolverOptions &opt, double n_space, unsigned int m,
                              unsigned int degree, bool coefficients_constant)
 {
-  return !coefficients_constant && opt.reuse_factorization && !opt.direct_only &&
+  return !coefficients_constant && opt.reuse_factorization &&
          opt.direct_solver == DirectEngine::umfpack &&
          auto_memory_margin * predicted_modes_mb(n_space, degree, m) <=
              auto_memory_budget_mb(opt);
@@ -236,9 +237,20 @@ bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsign
 {
   const bool reused = options.reuse_factorization && coefficients_constant;
   return options.type == SolverType::iterative ||
-         (options.type == SolverType::automatic && !options.direct_only &&
+         (options.type == SolverType::automatic &&
           (auto_picks_frozen_modes(options, n_space, m, degree, coefficients_constant) ||
-           (!auto_picks_modes(options, n_space, m, degree, reused) &&
+           (!options.no_trilinos && !auto_picks_modes(options, n_space, m, degree, reused) &&
             auto_picks_iterative(options, n_space * m, m, degree, reused))));
+}
+
+bool solves_without_trilinos(const SlabSolverOptions &options, double n_space,
+                             unsigned int m, unsigned int degree, bool coefficients_constant)
+{
+  if (!solves_iteratively(options, n_space, m, degree, coefficients_constant))
+    return true;
+  // auto's frozen-modes path always runs GMRES (SlabOperator::choose_solver)
+  return options.type == SolverType::automatic
+             ? auto_picks_frozen_modes(options, n_space, m, degree, coefficients_constant)
+             : IterativeSlabSolver::runs_without_trilinos(options.iterative);
 }
 } // namespace anisodwr

@@ -98,8 +98,8 @@ bool releases_assembly_matrices(const SlabSolverOptions &options,
 
 /// Whether solver.type = auto picks the Krylov solve preconditioned by the mode solver
 /// of the frozen operator (preconditioner = modes): coefficients that depend on time,
-/// reuse_factorization, UMFPACK, not direct_only, and predicted_modes_mb times
-/// auto_memory_margin fits auto_memory_budget_mb.
+/// reuse_factorization, UMFPACK, and predicted_modes_mb times auto_memory_margin fits
+/// auto_memory_budget_mb. (It runs on deal.II's GMRES, so no_trilinos allows it.)
 bool auto_picks_frozen_modes(const SlabSolverOptions &opt, double n_space, unsigned int m,
                              unsigned int degree, bool coefficients_constant);
 
@@ -113,4 +113,11 @@ bool solves_by_frozen_modes(const SlabSolverOptions &options, double n_space,
 /// or auto_picks_iterative for n_space m unknowns, unless auto_picks_modes).
 bool solves_iteratively(const SlabSolverOptions &options, double n_space, unsigned int m,
                         unsigned int degree, bool coefficients_constant);
+
+/// True if `options` solve that slab system without Trilinos: directly, or by GMRES
+/// preconditioned by the frozen operator's modes (IterativeSlabSolver::
+/// runs_without_trilinos; auto's frozen-modes path always is). Such solves may run in
+/// two threads (the DWR loop's concurrent marches).
+bool solves_without_trilinos(const SlabSolverOptions &options, double n_space,
+                             unsigned int m, unsigned int degree, bool coefficients_constant);
 } // namespace anisodwr

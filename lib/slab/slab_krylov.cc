@@ -84,8 +84,7 @@ double SlabOperator<dim>::solve_iterative(Vector<double> &rhs, bool transpose)
     totals.inner_iterations += stats.inner_iterations;
     ++totals.krylov_solves;
     totals.krylov_iterations += stats.iterations;
-    totals.max_krylov_iterations =
-        std::max<unsigned long>(totals.max_krylov_iterations, stats.iterations);
+    totals.raise_max_iterations(stats.iterations);
     if (frozen_modes())
       frozen.max_iterations = std::max(frozen.max_iterations, stats.iterations);
   }

@@ -146,8 +146,9 @@ void SlabOperator<dim>::choose_solver(bool constant)
     use_modes = false;
     use_iterative = true;
     it_opt.preconditioner = Preconditioner::modes;
-    if (it_opt.krylov == Krylov::bicgstab)
-      it_opt.krylov = Krylov::gmres;
+    // GMRES (deal.II's, without Trilinos): with a fixed preconditioner flexible GMRES
+    // gains nothing, and BiCGStab has no restart to keep the vectors few
+    it_opt.krylov = Krylov::gmres;
     // a near-exact preconditioner: 1e-13 costs about 1.5 iterations more per solve and
     // makes eta agree with the coupled direct solve to 8 digits (1e-10: 3e-6)
     it_opt.tolerance = std::min(it_opt.tolerance, 1e-13);
@@ -174,7 +175,7 @@ void SlabOperator<dim>::choose_solver(bool constant)
     return;
   }
   const double peak = predicted_lu_mb(n, space.degree(), m);
-  use_iterative = !opt.direct_only &&
+  use_iterative = !opt.no_trilinos &&
                   auto_picks_iterative(opt, n, m, space.degree(), factorization_reused);
   const std::string engine = opt.direct_solver == DirectEngine::mumps ? "MUMPS" : "UMFPACK";
   const std::string memory = "predicted " + engine + " peak " +

@@ -17,6 +17,7 @@
 #include "time/kronecker.h"
 #include "time/temporal_basis.h"
 
+#include <atomic>
 #include <limits>
 #include <map>
 #include <memory>
@@ -46,11 +47,20 @@ struct SlabTimings
   unsigned int n_spatial_assemblies = 0, n_interpolated = 0;
 };
 
-/// Process-wide totals over all SlabOperators (for summary.json).
+/// Process-wide totals over all SlabOperators (for summary.json); atomic: the DWR
+/// loop's concurrent marches add to them from two threads.
 struct SolverTotals
 {
-  unsigned long krylov_solves = 0, krylov_iterations = 0, max_krylov_iterations = 0,
-                fallbacks = 0, inner_iterations = 0, frozen_factorizations = 0;
+  std::atomic<unsigned long> krylov_solves{0}, krylov_iterations{0},
+      max_krylov_iterations{0}, fallbacks{0}, inner_iterations{0}, frozen_factorizations{0};
+  /// max_krylov_iterations = max(itself, n)
+  void raise_max_iterations(unsigned long n)
+  {
+    unsigned long now = max_krylov_iterations.load();
+    while (now < n && !max_krylov_iterations.compare_exchange_weak(now, n))
+    {
+    }
+  }
 };
 const SolverTotals &solver_totals();
 namespace detail

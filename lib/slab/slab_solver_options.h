@@ -65,8 +65,10 @@ struct SlabSolverOptions
   double auto_threshold = 0.;
   double auto_memory_mb = 0.;
   Fallback fallback = Fallback::direct;
-  /// auto never picks the iterative path (set by the DWR loop for concurrent marches)
-  bool direct_only = false;
+  /// auto picks nothing that runs on Trilinos: a direct solver, or the Krylov solve
+  /// preconditioned by a frozen operator's modes, which runs on deal.II's GMRES (set by
+  /// the DWR loop for concurrent marches: Trilinos is not called from two threads)
+  bool no_trilinos = false;
   IterativeOptions iterative;
   /// If not empty: the first slab matrix this operator prepares is written to this path
   /// in Matrix Market format (output.dump_slab_loop)

@@ -1,5 +1,6 @@
 // The Belos driver of the slab solvers: Krylov method, stagnation watch and the
-// preconditioner choice; see iterative_solver.h.
+// preconditioner choice; GMRES preconditioned by a frozen operator's modes runs on
+// deal.II's GMRES instead (no Trilinos); see iterative_solver.h.
 #include "solver/iterative_solver.h"
 
 #include "base/errors.h"
@@ -17,6 +18,9 @@
 #include <BelosTpetraAdapter.hpp>
 #include <Tpetra_BlockCrsMatrix.hpp>
 #include <Tpetra_BlockCrsMatrix_Helpers.hpp>
+
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 
 #include <algorithm>
 #include <cmath>
@@ -89,11 +93,72 @@ private:
   std::vector<double> history; // implicit residual norm by iteration
   unsigned int last = 0;
 };
+/// The stopping rule of the GMRES without Trilinos: deal.II's SolverControl on the
+/// implicit residual ||b - K x_k|| (right preconditioning), with StagnationTest's rule:
+/// fails when the residual has fallen by less than `factor` over the last `window`
+/// iterations.
+class WatchedControl : public dealii::SolverControl
+{
+public:
+  WatchedControl(const IterativeOptions &o, double bnorm)
+      : dealii::SolverControl(o.max_iterations, o.tolerance * bnorm, false, false),
+        window(o.stagnation_window), factor(o.stagnation_factor)
+  {
+  }
+
+  State check(const unsigned int step, const double value) override
+  {
+    if (history.size() <= step)
+      history.resize(step + 1, std::numeric_limits<double>::quiet_NaN());
+    history[step] = value;
+    const State state = dealii::SolverControl::check(step, value);
+    if (state == iterate && window > 0 && factor > 1. && step > window)
+    {
+      const double before = history[step - window];
+      if (before > 0. && !(value * factor < before))
+      {
+        std::ostringstream m;
+        m << "stagnated: the residual fell by " << (value > 0. ? before / value : 0.)
+          << " < " << factor << " over the last " << window << " iterations";
+        stagnation = m.str();
+        return failure;
+      }
+    }
+    return state;
+  }
+
+  std::string stagnation;
+
+private:
+  unsigned int window;
+  double factor;
+  std::vector<double> history; // implicit residual norm by iteration
+};
 } // namespace
 
 struct IterativeSlabSolver::Impl
 {
   IterativeOptions o;
+  /// preconditioner = modes with GMRES (runs_without_trilinos): deal.II's GMRES on
+  /// deal.II vectors, K from `blocks` (or `assembled`), the preconditioner `modes`;
+  /// nothing of Trilinos, so two marches may solve in two threads
+  bool native = false;
+  bool transpose = false;
+  KronBlocks blocks;
+  const dealii::SparseMatrix<double> *assembled = nullptr;
+  const ModeDirectSolver *modes = nullptr;
+
+  /// dst = K src (K^T with transpose)
+  void vmult(dealii::Vector<double> &dst, const dealii::Vector<double> &src) const
+  {
+    if (assembled)
+      transpose ? assembled->Tvmult(dst, src) : assembled->vmult(dst, src);
+    else
+      transpose ? blocks.Tvmult(dst.data(), src.data()) : blocks.vmult(dst.data(), src.data());
+  }
+  KrylovStats solve_native(const dealii::Vector<double> &b, dealii::Vector<double> &x,
+                           double bnorm, const std::string &name) const;
+
   RCP<const Map> map;
   RCP<Matrix> K; // assembled K (null if matrix-free)
   RCP<OP> op;    // K or the Kronecker operator
@@ -111,7 +176,13 @@ IterativeSlabSolver::IterativeSlabSolver(const IterativeOptions &options) : impl
                      " makes the preconditioner change between applications; it needs "
                      "solver.krylov = gmres or fgmres (run as flexible GMRES), not "
                      "bicgstab");
-  ensure_kokkos();
+  if (!runs_without_trilinos(options))
+    ensure_kokkos();
+}
+
+bool IterativeSlabSolver::runs_without_trilinos(const IterativeOptions &o)
+{
+  return o.preconditioner == Preconditioner::modes && o.krylov == Krylov::gmres;
 }
 
 IterativeSlabSolver::~IterativeSlabSolver() = default;
@@ -136,6 +207,18 @@ bool IterativeSlabSolver::needs_assembled_matrix(const IterativeOptions &o)
 void IterativeSlabSolver::setup(const SlabMatrix &K, bool transpose)
 {
   auto &d = *impl;
+  if (runs_without_trilinos(d.o))
+  {
+    if (!K.modes || !K.modes->factorized())
+      throw std::logic_error("preconditioner modes needs the factorized frozen mode solver");
+    d.native = true;
+    d.transpose = transpose;
+    d.modes = K.modes;
+    d.assembled = K.assembled;
+    if (!K.assembled)
+      d.blocks.reinit(*K.terms);
+    return;
+  }
   d.prec = Teuchos::null;
   d.kronecker = Teuchos::null;
   d.block_matrix = Teuchos::null;
@@ -337,6 +420,73 @@ struct BelosRun
 };
 } // namespace
 
+KrylovStats IterativeSlabSolver::Impl::solve_native(const dealii::Vector<double> &b,
+                                                    dealii::Vector<double> &x, double bnorm,
+                                                    const std::string &name) const
+{
+  struct Operator
+  {
+    const Impl &d;
+    void vmult(dealii::Vector<double> &dst, const dealii::Vector<double> &src) const
+    {
+      d.vmult(dst, src);
+    }
+  } op{*this};
+  struct ModeSolve
+  {
+    const Impl &d;
+    void vmult(dealii::Vector<double> &dst, const dealii::Vector<double> &src) const
+    {
+      dst = src;
+      d.modes->solve(dst, d.transpose);
+    }
+  } prec{*this};
+  WatchedControl control(o, bnorm);
+  // restart + 2 vectors: deal.II's count of GMRES's temporary vectors
+  dealii::SolverGMRES<dealii::Vector<double>> gmres(
+      control, dealii::SolverGMRES<dealii::Vector<double>>::AdditionalData(o.restart + 2, true));
+  bool converged = true;
+  std::string breakdown;
+  try
+  {
+    gmres.solve(op, x, b, prec);
+  }
+  catch (const dealii::SolverControl::NoConvergence &)
+  {
+    converged = false;
+  }
+  catch (const std::exception &e)
+  {
+    converged = false;
+    breakdown = e.what();
+  }
+  KrylovStats stats;
+  stats.iterations = control.last_step();
+  dealii::Vector<double> r(b.size());
+  vmult(r, x);
+  r.sadd(-1., 1., b);
+  stats.residual = r.l2_norm() / bnorm;
+  // the rule of the Belos path: the implicit residual met the tolerance and the true
+  // one is within 10x of it (round-off), or the true one meets it
+  const bool accepted = breakdown.empty() && control.stagnation.empty() &&
+                        std::isfinite(stats.residual) &&
+                        (stats.residual <= o.tolerance ||
+                         (converged && stats.residual <= 10. * o.tolerance));
+  if (!accepted)
+  {
+    std::ostringstream msg;
+    msg << "iterative solver " << name << " did not converge: " << stats.iterations
+        << " iterations (max " << o.max_iterations << "), relative residual "
+        << stats.residual << " > tolerance " << o.tolerance;
+    if (!control.stagnation.empty())
+      msg << " (" << control.stagnation << ")";
+    if (!breakdown.empty())
+      msg << " (breakdown: " << breakdown << ")";
+    throw KrylovFailure(msg.str());
+  }
+  return stats;
+}
+
 KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
                                        dealii::Vector<double> &x) const
 {
@@ -350,6 +500,8 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
     x = 0.;
     return stats;
   }
+  if (d.native)
+    return d.solve_native(b, x, bnorm, name());
   BelosRun run(d.o, d.op, d.prec, d.map, bnorm);
   const unsigned long inner_before = d.kronecker.is_null() ? 0 : d.kronecker->inner_iterations();
   {

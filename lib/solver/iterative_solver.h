@@ -1,6 +1,7 @@
 #pragma once
 // Krylov solvers (Trilinos Belos) with Ifpack2 / Kronecker preconditioners for the
-// condensed slab matrix K (interleaved ordering i*(r+1)+k, point blocks of size r+1).
+// condensed slab matrix K (interleaved ordering i*(r+1)+k, point blocks of size r+1);
+// GMRES with the frozen operator's modes runs on deal.II's GMRES (no Trilinos).
 //
 // All Trilinos types live in iterative_solver.cc (pimpl); this header needs deal.II only.
 #include <deal.II/lac/full_matrix.h>
@@ -64,6 +65,12 @@ public:
 
   /// True if the preconditioner needs K assembled (all but kronecker*, none).
   static bool needs_assembled_matrix(const IterativeOptions &options);
+
+  /// True for GMRES preconditioned by the modes of a frozen operator: deal.II's GMRES
+  /// on deal.II vectors, nothing of Trilinos, so solvers in two threads may run side by
+  /// side (the DWR loop's concurrent marches). Its stopping rule, stagnation watch and
+  /// acceptance are those of the Belos path.
+  static bool runs_without_trilinos(const IterativeOptions &options);
 
   /// Copies K (or K^T if `transpose`) into Tpetra, assembled or as Kronecker terms, and
   /// builds the preconditioner (from K.split for kronecker*, transposed here as well).
