@@ -8,6 +8,7 @@
 #include "time/slab_vector.h"
 
 #include <algorithm>
+#include <array>
 
 namespace anisodwr
 {
@@ -306,42 +307,66 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau,
     }
     return;
   }
+  // Point by point, on the cell's tables of W's shapes: per point the integrand is
+  // phi_l c_value + grad phi_l . c_gradient + Lap phi_l c_laplacian, so each point costs
+  // a few products per shape function.
+  //   A:  c_value = jx alpha z,  c_gradient = jx (eps grad z + b z)
+  //   S': with test = delta b.grad y: c_value = jx alpha test,
+  //       c_gradient = jx (b test + D_K^T grad y), c_laplacian = -jx eps test
+  // (weak_form::galerkin, weak_form::strong and the stabilization terms' form, in that
+  // order of terms)
   const double delta = primal.bounded_delta(delta_h, tau);
   for (unsigned int m = 0; m <= g.size(); ++m) // m == g.size(): the jump at t_{n-1}^+
   {
     const bool jump = m == g.size();
     const double t = jump ? t0 : t0 + g[m] * tau, wt = jump ? 1. : tau * omega[m];
     const Vector<double> &z = jump ? zt.plus : zt.val[m];
+    double *const dt = jump ? A.jump.data() : A.dt[m].data();
+    double *const val = jump ? nullptr : A.val[m].data();
     for (unsigned int q = 0; q < nq; ++q)
     {
+      const double *phi = &w_value[q * nw], *lap = &w_laplacian[q * nw];
+      std::array<const double *, dim> gphi;
+      for (unsigned int d = 0; d < dim; ++d)
+        gphi[d] = &w_gradient[d][q * nw];
       double zq = 0;
       Tensor<1, dim> gz;
       for (unsigned int l = 0; l < nw; ++l)
       {
-        zq += z(l) * fv_w.shape_value(l, q);
-        gz += z(l) * fv_w.shape_grad(l, q);
+        zq += z(l) * phi[l];
+        for (unsigned int d = 0; d < dim; ++d)
+          gz[d] += z(l) * gphi[d][l];
       }
       const auto cf = coefficients(q, t);
       const double jx = wt * fv_p.JxW(q);
       // the test side: zq (A) or delta b.grad y (S')
       const double test = supg ? weak_form::supg_test(delta, cf.b, gz) : zq;
+      const double c_dt = jx * test;
+      for (unsigned int l = 0; l < nw; ++l)
+        dt[l] += c_dt * phi[l];
+      if (jump)
+        continue;
+      double c_value, c_laplacian = 0.;
+      Tensor<1, dim> c_gradient;
+      if (supg)
+      {
+        c_value = c_dt * cf.alpha;
+        c_laplacian = -c_dt * cf.eps;
+        c_gradient = c_dt * cf.b;
+        if (cw.active)
+          c_gradient += jx * (transpose(cw.D) * gz);
+      }
+      else
+      {
+        c_value = jx * cf.alpha * zq;
+        c_gradient = jx * (cf.eps * gz + zq * cf.b);
+      }
       for (unsigned int l = 0; l < nw; ++l)
       {
-        const double phi = fv_w.shape_value(l, q);
-        if (jump)
-        {
-          A.jump(l) += jx * phi * test;
-          continue;
-        }
-        const Tensor<1, dim> &gphi = fv_w.shape_grad(l, q);
-        A.dt[m](l) += jx * phi * test;
-        if (supg)
-          A.val[m](l) +=
-              jx *
-              (weak_form::strong(cf, phi, gphi, trace(fv_w.shape_hessian(l, q))) * test +
-               cw.form(gphi, gz));
-        else
-          A.val[m](l) += jx * weak_form::galerkin(cf, phi, gphi, zq, gz);
+        double v = c_value * phi[l] + c_laplacian * lap[l];
+        for (unsigned int d = 0; d < dim; ++d)
+          v += c_gradient[d] * gphi[d][l];
+        val[l] += v;
       }
     }
   }

@@ -82,6 +82,22 @@ template <int dim> void CellKernel<dim>::reinit(const cell_iterator &cell)
           weak_form::coefficients(scene, fv_p.quadrature_point(q), 0.));
     build_cell_matrices();
   }
+  else
+  {
+    const unsigned int nw = fe_w.n_dofs_per_cell(), nq = quad.size();
+    w_value.resize(nq * nw);
+    w_laplacian.resize(nq * nw);
+    for (auto &g : w_gradient)
+      g.resize(nq * nw);
+    for (unsigned int q = 0; q < nq; ++q)
+      for (unsigned int l = 0; l < nw; ++l)
+      {
+        w_value[q * nw + l] = fv_w.shape_value(l, q);
+        w_laplacian[q * nw + l] = trace(fv_w.shape_hessian(l, q));
+        for (unsigned int d = 0; d < dim; ++d)
+          w_gradient[d][q * nw + l] = fv_w.shape_grad(l, q)[d];
+      }
+  }
   idx.resize(fe_p.n_dofs_per_cell());
   cell->get_dof_indices(idx);
   pieces.clear();

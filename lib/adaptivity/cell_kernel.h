@@ -218,6 +218,11 @@ private:
   void add_temporal_jump_by_matrices(double delta, const dealii::Vector<double> &Un,
                                      const dealii::Vector<double> *Uprev,
                                      SlabFunctional &rho, SlabFunctional &supg) const;
+  /// Coefficients that depend on time: W's shape values, gradients (by component) and
+  /// Laplacians at the cell's quadrature points, point-major (index q nw + l), for the
+  /// point-by-point adjoint functional
+  std::vector<double> w_value, w_laplacian;
+  std::array<std::vector<double>, dim> w_gradient;
   /// eps, b and alpha at the cell's quadrature points, evaluated once per cell where
   /// they do not depend on t (constant_coefficients)
   std::vector<weak_form::Coefficients<dim>> coefficients_at_q;

@@ -1,5 +1,7 @@
 #include "time/kronecker.h"
 
+#include <deal.II/lac/lapack_templates.h>
+
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -107,15 +109,32 @@ void KronBlocks::reinit(const std::vector<KronTerm> &terms)
     for (unsigned int p = 0; p < pattern.row_length(i); ++p)
       cols[rowstart[i] + p] = pattern.column_number(i, p);
   }
-  // Every block summed once, over the terms in their order, with the terms' rows walked
-  // side by side: one write per block entry instead of a read-modify-write per term.
+  // blocks = S T: S holds each spatial entry's values in the terms (one row per entry,
+  // gathered with the terms' rows walked side by side), T each term's temporal matrix
+  // as a row; formed chunk by chunk by BLAS (gemm) straight into the blocks
   const std::size_t mm = std::size_t(m) * m, nt = terms.size();
-  std::vector<double> T(nt * mm), s(nt);
+  std::vector<double> T(nt * mm);
   for (std::size_t t = 0; t < nt; ++t)
     for (unsigned int k = 0; k < m; ++k)
       for (unsigned int l = 0; l < m; ++l)
         T[t * mm + k * m + l] = terms[t].T(k, l);
   blocks.resize(cols.size() * mm);
+  constexpr std::size_t chunk = 512;
+  std::vector<double> S(chunk * nt);
+  std::size_t first = 0, filled = 0; // the chunk's first entry, its entries gathered
+  const auto flush = [&]()
+  {
+    // column-major view: blocks^T (mm x filled) = T^T (mm x nt) S^T (nt x filled)
+    const types::blas_int rows = static_cast<types::blas_int>(mm),
+                          columns = static_cast<types::blas_int>(filled),
+                          inner = static_cast<types::blas_int>(nt);
+    const double one = 1., zero = 0.;
+    if (filled > 0)
+      gemm("N", "N", &rows, &columns, &inner, &one, T.data(), &rows, S.data(), &inner,
+           &zero, blocks.data() + first * mm, &rows);
+    first += filled;
+    filled = 0;
+  };
   std::vector<SparseMatrix<double>::const_iterator> row;
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -124,21 +143,17 @@ void KronBlocks::reinit(const std::vector<KronTerm> &terms)
       row.push_back(t.S->begin(i));
     for (std::size_t q = rowstart[i]; q < rowstart[i + 1]; ++q)
     {
+      double *s_q = S.data() + filled * nt;
       for (std::size_t t = 0; t < nt; ++t)
       {
-        s[t] = row[t]->value();
+        s_q[t] = row[t]->value();
         ++row[t];
       }
-      double *b = blocks.data() + q * mm;
-      for (std::size_t e = 0; e < mm; ++e)
-      {
-        double v = 0.;
-        for (std::size_t t = 0; t < nt; ++t)
-          v += T[t * mm + e] * s[t];
-        b[e] = v;
-      }
+      if (++filled == chunk)
+        flush();
     }
   }
+  flush();
 }
 
 namespace
