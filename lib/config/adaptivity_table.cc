@@ -118,7 +118,9 @@ std::vector<Entry> adaptivity_entries()
        "goal.weights = auto and one adjoint for the weighted goal: assemble and "
        "factorize the adjoint's slab operator there, and march once the primal has "
        "given the weights), when one MPI rank "
-       "and more than one thread run, both slab systems are predicted to go to UMFPACK, "
+       "and more than one thread run, both slab systems are predicted to be solved without "
+       "Trilinos (UMFPACK, or GMRES preconditioned by a frozen operator's modes, which "
+       "runs on deal.II's GMRES), "
        "and the loop's memory estimate with both factorizations held at once fits the "
        "memory limit; otherwise (and with false) the primal, then the adjoint. The "
        "results are the same either way; t_primal and t_adjoint then overlap."},

@@ -74,7 +74,9 @@ std::vector<Entry> solver_entries()
        "not the slab matrix or the stored solutions."},
       {"solver", "krylov", "gmres", k(&I::krylov), by_name,
        "Iterative solver: gmres (restarted, right preconditioned), fgmres (flexible) or "
-       "bicgstab (Belos)."},
+       "bicgstab (Belos). gmres with preconditioner = modes runs on deal.II's GMRES "
+       "(no Trilinos: the DWR loop's primal and adjoint then march concurrently, "
+       "adaptivity.concurrent_marches)."},
       {"solver", "preconditioner", "kronecker_presb", k(&I::preconditioner), by_name,
        "Preconditioner (Ifpack2 unless noted): ilut / riluk = ILUT / ILU(k) of the whole "
        "slab matrix; block_jacobi / block_gauss_seidel = one sweep of block relaxation "

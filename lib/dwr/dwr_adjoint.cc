@@ -57,8 +57,9 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   // estimates without the adjoint's factors in memory
   Timer t;
   AdjointMarch a;
-  a.op = std::make_unique<SlabOperator<2>>(adjoint, basis,
-                                           march_solver_options(loop, "adjoint", concurrent));
+  SlabSolverOptions options = march_solver_options(loop, "adjoint", concurrent);
+  options.transposed_only = true;
+  a.op = std::make_unique<SlabOperator<2>>(adjoint, basis, options);
   double waited = 0;
   if (weights.valid())
   {

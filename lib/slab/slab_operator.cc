@@ -265,8 +265,11 @@ void SlabOperator<dim>::add_node_terms(const std::vector<SpatialMatrices> &nodes
   for (unsigned int c = 0; c < nodes.size(); ++c)
   {
     TM[c].add(lj[c], f.Tj);
-    terms_full.push_back({TM[c], &nodes[c].M});
-    terms_full.push_back({TA[c], &nodes[c].A});
+    if (!opt.transposed_only)
+    {
+      terms_full.push_back({TM[c], &nodes[c].M});
+      terms_full.push_back({TA[c], &nodes[c].A});
+    }
     terms_cond.push_back({TM[c], &nodes[c].Mc});
     terms_cond.push_back({TA[c], &nodes[c].Ac});
   }
@@ -455,6 +458,8 @@ void SlabOperator<dim>::solve(const Vector<double> &load, Vector<double> &U, boo
     ++time.n_solves;
     return;
   }
+  if (!transpose && opt.transposed_only)
+    throw std::logic_error("SlabOperator: a transposed_only operator solved untransposed");
   Timer timer;
   const unsigned int m = basis.n_dofs();
   const auto n = space.n_dofs();

@@ -69,6 +69,9 @@ struct SlabSolverOptions
   /// preconditioned by a frozen operator's modes, which runs on deal.II's GMRES (set by
   /// the DWR loop for concurrent marches: Trilinos is not called from two threads)
   bool no_trilinos = false;
+  /// The operator is only solved transposed (the DWR loop's adjoint march): no Dirichlet
+  /// lift, so time-interpolated operators keep no unconstrained A at their nodes
+  bool transposed_only = false;
   IterativeOptions iterative;
   /// If not empty: the first slab matrix this operator prepares is written to this path
   /// in Matrix Market format (output.dump_slab_loop)

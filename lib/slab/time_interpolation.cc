@@ -50,6 +50,11 @@ void interpolate(const std::vector<SpatialMatrices> &at_nodes, double t, double 
   { return std::array<const SparseMatrix<double> *, 4>{{&x.M, &x.A, &x.Mc, &x.Ac}}[p]; };
   for (const unsigned int p : parts)
   {
+    if (in(at_nodes[0], p)->empty()) // not kept at the nodes (transposed_only: A)
+    {
+      out(p)->clear();
+      continue;
+    }
     out(p)->reinit(in(at_nodes[0], p)->get_sparsity_pattern());
     for (unsigned int k = 0; k < n_time_nodes; ++k)
       out(p)->add(l[k], *in(at_nodes[k], p));
@@ -122,6 +127,9 @@ const std::vector<SpatialMatrices> *SlabOperator<dim>::time_nodes(double tau_n)
     }
     if (!exact)
       ti.at_nodes.clear();
+    else if (opt.transposed_only) // only the lift (solve, not transposed) reads A
+      for (auto &node : ti.at_nodes)
+        node.A.clear();
     it = interpolation.emplace(key, std::move(ti)).first;
   }
   return it->second.at_nodes.empty() ? nullptr : &it->second.at_nodes;
