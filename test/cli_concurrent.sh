@@ -21,39 +21,41 @@ PY
 cores=$(nproc)
 want_on=1
 [ "$cores" -gt 1 ] || want_on=0
-for case in "moving_hump_paper 7" "moving_hump 5"; do
-  set -- $case
+
+# both_ways NAME TOL CONFIG ARGS...: runs config/CONFIG.json with ARGS and
+# concurrent_marches true and false (outputs $tmp/NAME_true, $tmp/NAME_false), compares
+# their loops.csv within TOL and checks the concurrent column: want_on on every loop
+# with true, 0 with false. Returns 1 on a failure.
+both_ways() {
+  local name=$1 tol=$2 config=$3 c msg on off rc=0
+  shift 3
   for c in true false; do
-    "$bin" run "$src/config/$1.json" --set adaptivity.loops="$2" --set output.vtu_loops=0 \
-      --set adaptivity.concurrent_marches=$c --output "$tmp/$1_$c" >/dev/null 2>&1 ||
-      { echo "FAIL: $1 concurrent_marches=$c"; fail=1; continue 2; }
+    "$bin" run "$src/config/$config.json" "$@" --set output.vtu_loops=0 \
+      --set adaptivity.concurrent_marches=$c --output "$tmp/${name}_$c" >/dev/null 2>&1 ||
+      { echo "FAIL: $name concurrent_marches=$c"; return 1; }
   done
-  msg=$(same_loops "$tmp/$1_true/loops.csv" "$tmp/$1_false/loops.csv" 1e-12) || fail=1
-  echo "$1, concurrent against sequential marches: $msg"
-  on=$(column_values "$tmp/$1_true/loops.csv" concurrent)
-  off=$(column_values "$tmp/$1_false/loops.csv" concurrent)
+  msg=$(same_loops "$tmp/${name}_true/loops.csv" "$tmp/${name}_false/loops.csv" "$tol") || rc=1
+  echo "$name, concurrent against sequential marches: $msg"
+  on=$(column_values "$tmp/${name}_true/loops.csv" concurrent)
+  off=$(column_values "$tmp/${name}_false/loops.csv" concurrent)
   if [ "$on" != "$want_on" ] || [ "$off" != 0 ]; then
-    echo "FAIL: $1: concurrent column '$on' with true (want $want_on on $cores cores), '$off' with false (want 0)"
-    fail=1
+    echo "FAIL: $name: concurrent column '$on' with true (want $want_on on $cores cores), '$off' with false (want 0)"
+    rc=1
   fi
-done
+  return $rc
+}
+
+both_ways moving_hump_paper 1e-12 moving_hump_paper --set adaptivity.loops=7 || fail=1
+both_ways moving_hump 1e-12 moving_hump --set adaptivity.loops=5 || fail=1
 
 # Coefficients that depend on time (manufactured rotating): auto solves every slab by
 # GMRES preconditioned by a frozen operator's modes, which runs without Trilinos, so the
 # marches run concurrently as well. The same loops up to round-off: the concurrent
 # marches' UMFPACK runs OpenBLAS on one thread, which changes the factors' last bits
 # (J_error, about 1e-7 here, then moves by 1e-15 absolute).
-rot=(--set study.mode=dwr --set scene.variant=rotating --set discretization.r=2
-  --set discretization.initial_refinements=2 --set adaptivity.loops=4)
-for c in true false; do
-  "$bin" run "$src/config/manufactured.json" "${rot[@]}" --set output.vtu_loops=0 \
-    --set adaptivity.concurrent_marches=$c --output "$tmp/rotating_$c" >/dev/null 2>&1 ||
-    { echo "FAIL: manufactured rotating concurrent_marches=$c"; fail=1; }
-done
-msg=$(same_loops "$tmp/rotating_true/loops.csv" "$tmp/rotating_false/loops.csv" 1e-6) || fail=1
-echo "manufactured rotating (Krylov with frozen modes), concurrent against sequential marches: $msg"
-on=$(column_values "$tmp/rotating_true/loops.csv" concurrent)
-[ "$on" = "$want_on" ] || { echo "FAIL: manufactured rotating: concurrent column '$on', want $want_on"; fail=1; }
+both_ways rotating 1e-6 manufactured --set study.mode=dwr --set scene.variant=rotating \
+  --set discretization.r=2 --set discretization.initial_refinements=2 \
+  --set adaptivity.loops=4 || fail=1
 /usr/bin/python3 - "$tmp/rotating_true/summary.json" <<'PY' || fail=1
 import json, sys
 k = json.load(open(sys.argv[1]))["krylov"]
@@ -65,15 +67,8 @@ PY
 # (tolerance_measure = parts: one adjoint for the weighted goal; hemker.json's own
 # measure, goals, solves one adjoint per goal)
 one_adjoint=(--set adaptivity.tolerance_measure=parts)
-for c in true false; do
-  "$bin" run "$src/config/hemker.json" --set adaptivity.loops=4 --set output.vtu_loops=0 \
-    "${one_adjoint[@]}" --set adaptivity.concurrent_marches=$c --output "$tmp/hemker_$c" >/dev/null 2>&1 ||
-    { echo "FAIL: hemker concurrent_marches=$c"; fail=1; }
-done
-msg=$(same_loops "$tmp/hemker_true/loops.csv" "$tmp/hemker_false/loops.csv" 1e-12) || fail=1
-echo "hemker (goal.weights = auto), concurrent against sequential marches: $msg"
-auto=$(column_values "$tmp/hemker_true/loops.csv" concurrent)
-[ "$auto" = "$want_on" ] || { echo "FAIL: hemker (goal.weights = auto): concurrent column '$auto', want $want_on"; fail=1; }
+both_ways hemker_auto 1e-12 hemker --set adaptivity.loops=4 \
+  "${one_adjoint[@]}" || fail=1
 "$bin" run "$src/config/hemker.json" --set adaptivity.loops=2 --set output.vtu_loops=0 \
   "${one_adjoint[@]}" --output "$tmp/hemker" >/dev/null 2>&1 || { echo "FAIL: hemker"; fail=1; }
 # summary.json records each goal's lift difference d; the weight is sign(d)/|J_h|, and
@@ -98,16 +93,8 @@ PY
 # weights and march concurrently, concurrent and sequential marches agree, and the
 # combined indicators (the weighted sum of the goals' own) equal those of the one
 # adjoint of the weighted goal up to round-off
-for c in true false; do
-  "$bin" run "$src/config/hemker.json" --set adaptivity.loops=2 --set output.vtu_loops=0 \
-    "${one_adjoint[@]}" --set adaptivity.per_goal_estimates=true \
-    --set adaptivity.concurrent_marches=$c \
-    --output "$tmp/hemker_goals_$c" >/dev/null 2>&1 || { echo "FAIL: hemker per goal $c"; fail=1; }
-done
-msg=$(same_loops "$tmp/hemker_goals_true/loops.csv" "$tmp/hemker_goals_false/loops.csv" 1e-12) || fail=1
-echo "hemker per goal, concurrent against sequential marches: $msg"
-on=$(column_values "$tmp/hemker_goals_true/loops.csv" concurrent)
-[ "$on" = "$want_on" ] || { echo "FAIL: hemker per goal: concurrent column '$on', want $want_on"; fail=1; }
+both_ways hemker_goals 1e-12 hemker --set adaptivity.loops=2 "${one_adjoint[@]}" \
+  --set adaptivity.per_goal_estimates=true || fail=1
 /usr/bin/python3 - "$tmp/hemker/loops.csv" "$tmp/hemker_goals_true/loops.csv" <<'PY' || fail=1
 import csv, sys
 a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
