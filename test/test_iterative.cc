@@ -373,6 +373,67 @@ TEST(Iterative, NonConvergenceThrowsOrFallsBack)
   EXPECT_EQ(fallback.timings().n_fallbacks, 1u);
   EXPECT_EQ(fallback.timings().n_factorizations, 1u);
 }
+
+// The GMRES without Trilinos (frozen modes) fails the same way: at most one iteration
+// on a rotating slab (r = 2, tolerance 1e-13, zero initial guess) throws a
+// KrylovFailure naming solver, iterations and residual (the first slab: its operator is
+// the frozen one, so there is no retry); with fallback = direct the coupled LU gives the
+// direct solution and counts one fallback. A stagnation window of 1 iteration with a
+// factor 1e6 stops it as stagnated.
+TEST(Iterative, FrozenModesGmresFailureThrowsOrFallsBack)
+{
+  SlabProblem s("manufactured", "rotating", 1, 1e-2);
+  const TemporalBasis basis(2);
+  auto o = iterative("gmres", "modes", 1e-13);
+  o.iterative.max_iterations = 1;
+  const Vector<double> load = random_vector(s.space->n_dofs() * basis.n_dofs(), 3);
+  {
+    SlabOperator<2> failing(*s.space, basis, o);
+    failing.prepare(0., 0.05);
+    Vector<double> U;
+    try
+    {
+      failing.solve(load, U);
+      FAIL() << "expected KrylovFailure";
+    }
+    catch (const KrylovFailure &e)
+    {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("gmres+modes did not converge: 1 iterations (max 1)"),
+                std::string::npos)
+          << what;
+      EXPECT_NE(what.find("relative residual"), std::string::npos) << what;
+    }
+  }
+  {
+    auto stalled = iterative("gmres", "modes", 1e-13);
+    stalled.iterative.stagnation_window = 1;
+    stalled.iterative.stagnation_factor = 1e6;
+    SlabOperator<2> failing(*s.space, basis, stalled);
+    failing.prepare(0., 0.05);
+    Vector<double> U;
+    try
+    {
+      failing.solve(load, U);
+      FAIL() << "expected KrylovFailure";
+    }
+    catch (const KrylovFailure &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("stagnated"), std::string::npos) << e.what();
+    }
+  }
+  o.fallback = Fallback::direct;
+  SlabOperator<2> fallback(*s.space, basis, o),
+      direct(*s.space, basis, SlabSolverOptions::direct(true));
+  fallback.prepare(0., 0.05);
+  direct.prepare(0., 0.05);
+  Vector<double> U, Ud;
+  fallback.solve(load, U);
+  direct.solve(load, Ud);
+  U -= Ud;
+  EXPECT_LE(U.l2_norm(), 1e-10 * Ud.l2_norm());
+  EXPECT_EQ(fallback.timings().n_fallbacks, 1u);
+}
 } // namespace
 
 namespace
