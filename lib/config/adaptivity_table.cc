@@ -123,7 +123,8 @@ std::vector<Entry> adaptivity_entries()
        "runs on deal.II's GMRES), "
        "and the loop's memory estimate with both factorizations held at once fits the "
        "memory limit; otherwise (and with false) the primal, then the adjoint. The "
-       "results are the same either way; t_primal and t_adjoint then overlap."},
+       "results are the same either way (with the frozen modes' GMRES up to round-off: "
+       "UMFPACK's BLAS runs on one thread then); t_primal and t_adjoint then overlap."},
       {"adaptivity", "measure_time_error", "false", m(&S::measure_time_error), boolean,
        "Diagnostic: on every loop solve the primal on the loop's spatial mesh with its "
        "slabs, bisected once and bisected twice, all with the SUPG parameters of the "
