@@ -45,6 +45,71 @@ public:
   double ratio;            ///< residual `window` iterations ago / residual now
 };
 
+/// The stagnation rule of both Krylov drivers: the residual norms by iteration, and
+/// stagnation where the residual has fallen by less than `factor` over the last `window`
+/// iterations.
+class ResidualHistory
+{
+public:
+  ResidualHistory(unsigned int window, double factor) : window(window), factor(factor) {}
+
+  /// Records iteration k's residual; the fall over the last window (residual then /
+  /// now, 0 for a zero residual now) if that is stagnation, else a negative number.
+  double stagnation(std::size_t k, double residual)
+  {
+    if (history.size() <= k)
+      history.resize(k + 1, std::numeric_limits<double>::quiet_NaN());
+    history[k] = residual;
+    if (k <= window)
+      return -1.;
+    const double before = history[k - window];
+    // A NaN before (iteration not recorded) never triggers.
+    if (before > 0. && !(residual * factor < before))
+      return residual > 0. ? before / residual : 0.;
+    return -1.;
+  }
+  void clear() { history.clear(); }
+
+private:
+  unsigned int window;
+  double factor;
+  std::vector<double> history;
+};
+
+std::string stagnation_text(double ratio, double factor, unsigned int window)
+{
+  std::ostringstream m;
+  m << "stagnated: the residual fell by " << ratio << " < " << factor << " over the last "
+    << window << " iterations";
+  return m.str();
+}
+
+/// Whether a Krylov solve's result is accepted: no breakdown or stagnation, and the true
+/// relative residual meets the tolerance, or is within 10x of it where the implicit
+/// (recurrence) one met it (round-off: loss of accuracy).
+bool accepted(const KrylovStats &stats, double tolerance, bool implicit_met,
+              const std::string &stagnation, const std::string &breakdown)
+{
+  return breakdown.empty() && stagnation.empty() && std::isfinite(stats.residual) &&
+         (stats.residual <= tolerance || (implicit_met && stats.residual <= 10. * tolerance));
+}
+
+/// The failure of solver `name`: iterations, residual, stagnation or breakdown.
+KrylovFailure failure(const std::string &name, const KrylovStats &stats,
+                      const IterativeOptions &o, const std::string &stagnation,
+                      const std::string &breakdown)
+{
+  std::ostringstream msg;
+  msg << "iterative solver " << name << " did not converge: " << stats.iterations
+      << " iterations (max " << o.max_iterations << "), relative residual " << stats.residual
+      << " > tolerance " << o.tolerance;
+  if (!stagnation.empty())
+    msg << " (" << stagnation << ")";
+  if (!breakdown.empty())
+    msg << " (breakdown: " << breakdown << ")";
+  return KrylovFailure(msg.str());
+}
+
 /// Stagnation detection for (F)GMRES, added to Belos' status tests as the "debug" test
 /// (an OR member that never passes): records the implicit residual norm of each
 /// iteration and throws Stagnation when it has fallen by less than `factor` over the
@@ -52,7 +117,10 @@ public:
 class StagnationTest : public Belos::StatusTest<double, MV, OP>
 {
 public:
-  StagnationTest(unsigned int window, double factor) : window(window), factor(factor) {}
+  StagnationTest(unsigned int window, double factor)
+      : window(window), factor(factor), history(window, factor)
+  {
+  }
 
   Belos::StatusType checkStatus(Belos::Iteration<double, MV, OP> *it) override
   {
@@ -61,18 +129,10 @@ public:
       return Belos::Failed;
     std::vector<double> norms(1, 0.);
     it->getNativeResiduals(&norms);
-    const auto ku = static_cast<std::size_t>(k);
-    if (history.size() <= ku)
-      history.resize(ku + 1, std::numeric_limits<double>::quiet_NaN());
-    history[ku] = norms[0];
     last = static_cast<unsigned int>(k);
-    if (ku > window)
-    {
-      const double before = history[ku - window];
-      // A NaN before (iteration not recorded) never triggers.
-      if (before > 0. && !(norms[0] * factor < before))
-        throw Stagnation(last, norms[0] > 0. ? before / norms[0] : 0.);
-    }
+    const double ratio = history.stagnation(static_cast<std::size_t>(k), norms[0]);
+    if (ratio >= 0.)
+      throw Stagnation(last, ratio);
     return Belos::Failed;
   }
   Belos::StatusType getStatus() const override { return Belos::Failed; }
@@ -90,39 +150,30 @@ public:
 private:
   unsigned int window;
   double factor;
-  std::vector<double> history; // implicit residual norm by iteration
+  ResidualHistory history; // implicit residual norm by iteration
   unsigned int last = 0;
 };
 /// The stopping rule of the GMRES without Trilinos: deal.II's SolverControl on the
-/// implicit residual ||b - K x_k|| (right preconditioning), with StagnationTest's rule:
-/// fails when the residual has fallen by less than `factor` over the last `window`
-/// iterations.
+/// implicit residual ||b - K x_k|| (right preconditioning), failing on stagnation by
+/// ResidualHistory's rule where solver.stagnation_* ask for it (as the Belos path).
 class WatchedControl : public dealii::SolverControl
 {
 public:
   WatchedControl(const IterativeOptions &o, double bnorm)
       : dealii::SolverControl(o.max_iterations, o.tolerance * bnorm, false, false),
-        window(o.stagnation_window), factor(o.stagnation_factor)
+        watch(o.stagnation_window > 0 && o.stagnation_factor > 1.),
+        window(o.stagnation_window), factor(o.stagnation_factor), history(window, factor)
   {
   }
 
   State check(const unsigned int step, const double value) override
   {
-    if (history.size() <= step)
-      history.resize(step + 1, std::numeric_limits<double>::quiet_NaN());
-    history[step] = value;
+    const double ratio = history.stagnation(step, value);
     const State state = dealii::SolverControl::check(step, value);
-    if (state == iterate && window > 0 && factor > 1. && step > window)
+    if (state == iterate && watch && ratio >= 0.)
     {
-      const double before = history[step - window];
-      if (before > 0. && !(value * factor < before))
-      {
-        std::ostringstream m;
-        m << "stagnated: the residual fell by " << (value > 0. ? before / value : 0.)
-          << " < " << factor << " over the last " << window << " iterations";
-        stagnation = m.str();
-        return failure;
-      }
+      stagnation = stagnation_text(ratio, factor, window);
+      return failure;
     }
     return state;
   }
@@ -130,9 +181,10 @@ public:
   std::string stagnation;
 
 private:
+  bool watch;
   unsigned int window;
   double factor;
-  std::vector<double> history; // implicit residual norm by iteration
+  ResidualHistory history;
 };
 } // namespace
 
@@ -371,10 +423,7 @@ struct BelosRun
       const double now = true_residual();
       if (!(now * o.stagnation_factor < before) && stats.iterations < o.max_iterations)
       {
-        std::ostringstream m;
-        m << "stagnated: the residual fell by " << (now > 0. ? before / now : 0.) << " < "
-          << o.stagnation_factor << " over the last " << chunk << " iterations";
-        stagnation = m.str();
+        stagnation = stagnation_text(now > 0. ? before / now : 0., o.stagnation_factor, chunk);
         break;
       }
       before = now;
@@ -395,10 +444,7 @@ struct BelosRun
     }
     catch (const Stagnation &e)
     {
-      std::ostringstream m;
-      m << "stagnated: the residual fell by " << e.ratio << " < " << o.stagnation_factor
-        << " over the last " << o.stagnation_window << " iterations";
-      stagnation = m.str();
+      stagnation = stagnation_text(e.ratio, o.stagnation_factor, o.stagnation_window);
       stats.iterations = e.iterations;
     }
     catch (const std::exception &e)
@@ -409,13 +455,12 @@ struct BelosRun
   }
 
   /// The implicit (recurrence) residual may converge while the true one stagnates at
-  /// round-off (loss of accuracy: Belos then reports Unconverged); accept a factor 10
-  /// of slack on the true residual in that case and when Belos reports convergence.
+  /// round-off (loss of accuracy: Belos then reports Unconverged); either counts as the
+  /// implicit residual's convergence for `accepted`.
   bool converged(const KrylovStats &stats) const
   {
-    return breakdown.empty() && stagnation.empty() && std::isfinite(stats.residual) &&
-           stats.residual <= 10. * o.tolerance &&
-           (ret == Belos::Converged || lost_accuracy || stats.residual <= o.tolerance);
+    return accepted(stats, o.tolerance, ret == Belos::Converged || lost_accuracy,
+                    stagnation, breakdown);
   }
 };
 } // namespace
@@ -466,24 +511,8 @@ KrylovStats IterativeSlabSolver::Impl::solve_native(const dealii::Vector<double>
   vmult(r, x);
   r.sadd(-1., 1., b);
   stats.residual = r.l2_norm() / bnorm;
-  // the rule of the Belos path: the implicit residual met the tolerance and the true
-  // one is within 10x of it (round-off), or the true one meets it
-  const bool accepted = breakdown.empty() && control.stagnation.empty() &&
-                        std::isfinite(stats.residual) &&
-                        (stats.residual <= o.tolerance ||
-                         (converged && stats.residual <= 10. * o.tolerance));
-  if (!accepted)
-  {
-    std::ostringstream msg;
-    msg << "iterative solver " << name << " did not converge: " << stats.iterations
-        << " iterations (max " << o.max_iterations << "), relative residual "
-        << stats.residual << " > tolerance " << o.tolerance;
-    if (!control.stagnation.empty())
-      msg << " (" << control.stagnation << ")";
-    if (!breakdown.empty())
-      msg << " (breakdown: " << breakdown << ")";
-    throw KrylovFailure(msg.str());
-  }
+  if (!accepted(stats, o.tolerance, converged, control.stagnation, breakdown))
+    throw failure(name, stats, o, control.stagnation, breakdown);
   return stats;
 }
 
@@ -527,17 +556,7 @@ KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
       x[i] = xd[i];
   }
   if (!run.converged(stats))
-  {
-    std::ostringstream msg;
-    msg << "iterative solver " << name() << " did not converge: " << stats.iterations
-        << " iterations (max " << d.o.max_iterations << "), relative residual "
-        << stats.residual << " > tolerance " << d.o.tolerance;
-    if (!run.stagnation.empty())
-      msg << " (" << run.stagnation << ")";
-    if (!run.breakdown.empty())
-      msg << " (breakdown: " << run.breakdown << ")";
-    throw KrylovFailure(msg.str());
-  }
+    throw failure(name(), stats, d.o, run.stagnation, run.breakdown);
   return stats;
 }
 } // namespace anisodwr
