@@ -184,9 +184,9 @@ bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
                               primal.degree(), !model.time_dependent) &&
       solves_without_trilinos(options, adjoint.n_dofs(), prm.discretization.r + 1,
                               adjoint.degree(), !model.time_dependent) &&
-      !(higher_order &&
-        !solves_without_trilinos(options, primal.n_dofs(), prm.discretization.r + 2,
-                                 primal.degree(), !model.time_dependent));
+      (!higher_order ||
+       solves_without_trilinos(options, primal.n_dofs(), prm.discretization.r + 2,
+                               primal.degree(), !model.time_dependent));
   row.mem_estimate = estimate_memory(model).total_mb;
   if (model.concurrent && row.mem_estimate * mem_ratio > mem_limit.mb)
   {
