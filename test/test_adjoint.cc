@@ -98,6 +98,43 @@ TEST(Mollifier, IntegratesToOne)
     }
 }
 
+TEST(Mollifier, IntegratesToOneToRoundOffOnEveryRule)
+{
+  // The mollifier is smooth but no polynomial: each path of the goal's quadrature must
+  // integrate it to round-off, for p = 1 to 3 (the primal's and the adjoint's spaces).
+  // 1 x 1 cells, s = 0.01: a cell 100 s wide (capped; the rule on the support's box);
+  // 8 x 8, s = 0.05: a cell 2.5 s wide (the support's box, not capped); 32 x 32 with
+  // the goal on a vertex; 64 x 64, s = 0.2: cells of s/12.8 (the cached iterated rule).
+  struct Case
+  {
+    unsigned int cells;
+    double s;
+    Point<2> c;
+  };
+  const auto scene = manufactured();
+  for (const Case &k : {Case{1, 0.01, Point<2>(0.45, 0.52)}, Case{8, 0.05, Point<2>(0.45, 0.52)},
+                        Case{32, 0.05, Point<2>(0.5, 0.5)}, Case{64, 0.2, Point<2>(0.45, 0.5)}})
+  {
+    Triangulation<2> tria;
+    GridGenerator::subdivided_hyper_cube(tria, k.cells);
+    for (unsigned int p : {1u, 2u, 3u})
+    {
+      Space<2> space(*scene, tria, p, Stabilization{0., SupgLength::volume, 0.});
+      space.setup();
+      GoalSpec g;
+      g.location = {k.c[0], k.c[1]};
+      g.radius = k.s;
+      Vector<double> j;
+      assemble_goal_vector(space, g, j);
+      double sum = 0;
+      for (const double v : j)
+        sum += v;
+      EXPECT_NEAR(sum, 1., 1e-11) << k.cells << " x " << k.cells << " cells, s = " << k.s
+                                  << ", p = " << p;
+    }
+  }
+}
+
 namespace
 {
 /// j(f) - f(c) for the mollified point goal (center c, radius s) on a cells[0] x
@@ -138,7 +175,7 @@ TEST(Mollifier, ThinCellsIntegrateLinearFunctionsExactly)
 TEST(Mollifier, LargeCellsIntegrateLinearFunctionsExactly)
 {
   // Cells 25-100 times wider than the support (s = 0.01): the rule is restricted to the
-  // part of the cell that holds the support, s/32 per sub-cell. A goal inside one
+  // part of the cell that holds the support, s/16 per sub-cell. A goal inside one
   // cell and one on a vertex shared by four cells.
   for (const auto &[cells, center] :
        {std::pair<std::array<unsigned int, 2>, Point<2>>{{{1, 1}}, Point<2>(0.45, 0.52)},

@@ -36,7 +36,7 @@ Quadrature<dim> DensityGoalPart<dim>::tensor_rule(const Quadrature<1> &q0,
 
 template <int dim> Quadrature<1> DensityGoalPart<dim>::gauss_on(double lo, double hi) const
 {
-  const QGauss<1> base(fe.degree + 2);
+  const QGauss<1> base(base_points());
   std::vector<Point<1>> points(base.size());
   std::vector<double> weights(base.size());
   for (unsigned int i = 0; i < base.size(); ++i)
@@ -52,7 +52,7 @@ template <int dim> FEValues<dim> &DensityGoalPart<dim>::fe_values(const SubCells
   auto &v = values[n];
   if (!v)
   {
-    const QGauss<1> base(fe.degree + 2);
+    const QGauss<1> base(base_points());
     v = std::make_unique<FEValues<dim>>(
         mapping, fe, tensor_rule(QIterated<1>(base, n[0]), QIterated<1>(base, n[1])),
         update_values | update_quadrature_points | update_JxW_values);
@@ -91,7 +91,7 @@ bool DensityGoalPart<dim>::add_cell_vector(const CellIterator &cell, double weig
   }
   else
   {
-    const QGauss<1> base(fe.degree + 2);
+    const QGauss<1> base(base_points());
     if (n[0] * n[1] * base.size() * base.size() <= max_rule_points)
     {
       add(fe_values(n));

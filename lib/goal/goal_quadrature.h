@@ -41,8 +41,12 @@ public:
   /// which a clipped rule or a slice of a rule does not.
   static dealii::Quadrature<dim> tensor_rule(const dealii::Quadrature<1> &q0,
                                              const dealii::Quadrature<1> &q1);
-  /// The Gauss rule of the part's degree (fe.degree + 2) mapped to [lo, hi].
+  /// The Gauss rule of base_points() points mapped to [lo, hi].
   dealii::Quadrature<1> gauss_on(double lo, double hi) const;
+  /// Points of the 1D Gauss rule on a sub-cell: fe.degree + 2 (exact for a density that
+  /// is a polynomial of degree <= fe.degree + 3 on the sub-cell), or more for a kind
+  /// whose density is smooth but not polynomial.
+  virtual unsigned int base_points() const { return fe.degree + 2; }
 
 protected:
   virtual bool meets(const CellIterator &cell) const = 0;
