@@ -84,6 +84,12 @@ std::string stagnation_text(double ratio, double factor, unsigned int window)
   return m.str();
 }
 
+/// Restarts of GMRES from its iterate where the implicit (recurrence) residual met the
+/// tolerance and the true one is not accepted: the recurrence lost the last digits to
+/// round-off, and a restart starts from the true residual (one or two iterations then
+/// reach the accuracy of the coupled direct solve).
+constexpr unsigned int accuracy_restarts = 2;
+
 /// Whether a Krylov solve's result is accepted: no breakdown or stagnation, and the true
 /// relative residual meets the tolerance, or is within 10x of it where the implicit
 /// (recurrence) one met it (round-off: loss of accuracy).
@@ -432,25 +438,41 @@ struct BelosRun
     }
   }
 
-  /// One solve of at most max_iterations (GMRES watched by StagnationTest).
+  /// One solve of at most max_iterations (GMRES watched by StagnationTest), restarted
+  /// from its iterate (at most accuracy_restarts times) where the implicit residual met
+  /// the tolerance and the true one is not accepted.
   void solve_once(KrylovStats &stats)
   {
-    auto solver = make_solver(static_cast<int>(o.max_iterations));
+    for (unsigned int restart = 0;; ++restart)
+    {
+      solve_for(o.max_iterations - stats.iterations, stats);
+      stats.residual = true_residual();
+      if (!stagnation.empty() || !breakdown.empty() || restart >= accuracy_restarts ||
+          stats.iterations >= o.max_iterations || converged(stats) ||
+          !(ret == Belos::Converged || lost_accuracy))
+        return;
+    }
+  }
+
+  /// One Belos solve of at most max_iterations more iterations.
+  void solve_for(unsigned int max_iterations, KrylovStats &stats)
+  {
+    auto solver = make_solver(static_cast<int>(max_iterations));
     try
     {
       ret = solver->solve();
-      stats.iterations = static_cast<unsigned int>(solver->getNumIters());
+      stats.iterations += static_cast<unsigned int>(solver->getNumIters());
       lost_accuracy = solver->isLOADetected();
     }
     catch (const Stagnation &e)
     {
       stagnation = stagnation_text(e.ratio, o.stagnation_factor, o.stagnation_window);
-      stats.iterations = e.iterations;
+      stats.iterations += e.iterations;
     }
     catch (const std::exception &e)
     {
       breakdown = e.what();
-      stats.iterations = static_cast<unsigned int>(solver->getNumIters());
+      stats.iterations += static_cast<unsigned int>(solver->getNumIters());
     }
   }
 
@@ -486,34 +508,41 @@ KrylovStats IterativeSlabSolver::Impl::solve_native(const dealii::Vector<double>
       d.modes->solve(dst, d.transpose);
     }
   } prec{*this};
-  WatchedControl control(o, bnorm);
-  // restart + 2 vectors: deal.II's count of GMRES's temporary vectors
-  dealii::SolverGMRES<dealii::Vector<double>> gmres(
-      control, dealii::SolverGMRES<dealii::Vector<double>>::AdditionalData(o.restart + 2, true));
-  bool converged = true;
-  std::string breakdown;
-  try
-  {
-    gmres.solve(op, x, b, prec);
-  }
-  catch (const dealii::SolverControl::NoConvergence &)
-  {
-    converged = false;
-  }
-  catch (const std::exception &e)
-  {
-    converged = false;
-    breakdown = e.what();
-  }
   KrylovStats stats;
-  stats.iterations = control.last_step();
-  dealii::Vector<double> r(b.size());
-  vmult(r, x);
-  r.sadd(-1., 1., b);
-  stats.residual = r.l2_norm() / bnorm;
-  if (!accepted(stats, o.tolerance, converged, control.stagnation, breakdown))
-    throw failure(name, stats, o, control.stagnation, breakdown);
-  return stats;
+  for (unsigned int restart = 0;; ++restart)
+  {
+    IterativeOptions left = o;
+    left.max_iterations = o.max_iterations - stats.iterations;
+    WatchedControl control(left, bnorm);
+    // restart + 2 vectors: deal.II's count of GMRES's temporary vectors
+    dealii::SolverGMRES<dealii::Vector<double>> gmres(
+        control,
+        dealii::SolverGMRES<dealii::Vector<double>>::AdditionalData(o.restart + 2, true));
+    bool converged = true;
+    std::string breakdown;
+    try
+    {
+      gmres.solve(op, x, b, prec);
+    }
+    catch (const dealii::SolverControl::NoConvergence &)
+    {
+      converged = false;
+    }
+    catch (const std::exception &e)
+    {
+      converged = false;
+      breakdown = e.what();
+    }
+    stats.iterations += control.last_step();
+    dealii::Vector<double> r(b.size());
+    vmult(r, x);
+    r.sadd(-1., 1., b);
+    stats.residual = r.l2_norm() / bnorm;
+    if (accepted(stats, o.tolerance, converged, control.stagnation, breakdown))
+      return stats;
+    if (!(converged && restart < accuracy_restarts && stats.iterations < o.max_iterations))
+      throw failure(name, stats, o, control.stagnation, breakdown);
+  }
 }
 
 KrylovStats IterativeSlabSolver::solve(const dealii::Vector<double> &b,
