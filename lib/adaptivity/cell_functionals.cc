@@ -274,42 +274,60 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau,
                                          const SlabFunction &zt, bool supg,
                                          SlabFunctional &A) const
 {
+  adjoint_functionals(t0, tau, {{&nodal, &zt, supg, &A}});
+}
+
+template <int dim>
+void CellKernel<dim>::adjoint_functionals(double t0, double tau,
+                                          std::initializer_list<AdjointRequest> requests) const
+{
   const unsigned int nw = fe_w.n_dofs_per_cell(), nq = quad.size();
-  A.reset(g.size(), nw);
+  constexpr unsigned int max_requests = 3;
+  const unsigned int R = requests.size();
+  AssertThrow(R <= max_requests, ExcMessage("adjoint_functionals: at most 3 requests"));
+  const AdjointRequest *const req = requests.begin();
+  for (const auto &r : requests)
+    r.A->reset(g.size(), nw);
   if (constant_coefficients)
   {
-    // the same functional through the cell matrices: val = wt K z, dt = wt M z
-    // (S' matrices per unit delta_K), with K z and M z formed once per temporal node
-    const auto &Kc = supg ? adj_matrices[2] : adj_matrices[0],
-               &Mc = supg ? adj_matrices[3] : adj_matrices[1];
-    const double scale = supg ? primal.bounded_delta(delta_h, tau) : 1.;
-    auto &kz = nodal_scratch[0], &mz = nodal_scratch[1];
-    kz.resize(nodal.size());
-    mz.resize(nodal.size());
-    for (unsigned int k = 0; k < nodal.size(); ++k)
+    for (const auto &r : requests)
     {
-      sv::vmult(kz[k], Kc, nodal[k]);
-      if (scale != 1.)
-        kz[k] *= scale;
-      if (supg && cw.active) // S' also holds the stabilization terms' form
-        sv::add_vmult(kz[k], 1., adj_matrices[4], nodal[k]);
-      sv::vmult(mz[k], Mc, nodal[k]);
-      sv::add(A.jump, scale * basis.left_trace()[k], mz[k]);
-    }
-    for (unsigned int m = 0; m < g.size(); ++m)
-    {
-      const double wt = tau * omega[m];
+      // the same functional through the cell matrices: val = wt K z, dt = wt M z
+      // (S' matrices per unit delta_K), with K z and M z formed once per temporal node
+      const bool supg = r.supg;
+      const auto &nodal = *r.nodal;
+      SlabFunctional &A = *r.A;
+      const auto &Kc = supg ? adj_matrices[2] : adj_matrices[0],
+                 &Mc = supg ? adj_matrices[3] : adj_matrices[1];
+      const double scale = supg ? primal.bounded_delta(delta_h, tau) : 1.;
+      auto &kz = nodal_scratch[0], &mz = nodal_scratch[1];
+      kz.resize(nodal.size());
+      mz.resize(nodal.size());
       for (unsigned int k = 0; k < nodal.size(); ++k)
       {
-        sv::add(A.val[m], wt * ell[m][k], kz[k]);
-        sv::add(A.dt[m], wt * scale * ell[m][k], mz[k]);
+        sv::vmult(kz[k], Kc, nodal[k]);
+        if (scale != 1.)
+          kz[k] *= scale;
+        if (supg && cw.active) // S' also holds the stabilization terms' form
+          sv::add_vmult(kz[k], 1., adj_matrices[4], nodal[k]);
+        sv::vmult(mz[k], Mc, nodal[k]);
+        sv::add(A.jump, scale * basis.left_trace()[k], mz[k]);
+      }
+      for (unsigned int m = 0; m < g.size(); ++m)
+      {
+        const double wt = tau * omega[m];
+        for (unsigned int k = 0; k < nodal.size(); ++k)
+        {
+          sv::add(A.val[m], wt * ell[m][k], kz[k]);
+          sv::add(A.dt[m], wt * scale * ell[m][k], mz[k]);
+        }
       }
     }
     return;
   }
   // Point by point, on the cell's tables of W's shapes: per point the integrand is
   // phi_l c_value + grad phi_l . c_gradient + Lap phi_l c_laplacian, so each point costs
-  // a few products per shape function.
+  // a few products per shape function and request.
   //   A:  c_value = jx alpha z,  c_gradient = jx (eps grad z + b z)
   //   S': with test = delta b.grad y: c_value = jx alpha test,
   //       c_gradient = jx (b test + D_K^T grad y), c_laplacian = -jx eps test
@@ -320,54 +338,74 @@ void CellKernel<dim>::adjoint_functional(double t0, double tau,
   {
     const bool jump = m == g.size();
     const double t = jump ? t0 : t0 + g[m] * tau, wt = jump ? 1. : tau * omega[m];
-    const Vector<double> &z = jump ? zt.plus : zt.val[m];
-    double *const dt = jump ? A.jump.data() : A.dt[m].data();
-    double *const val = jump ? nullptr : A.val[m].data();
+    std::array<const Vector<double> *, max_requests> z{};
+    std::array<double *, max_requests> dt{}, val{};
+    for (unsigned int r = 0; r < R; ++r)
+    {
+      const SlabFunction &zt = *req[r].zt;
+      z[r] = jump ? &zt.plus : &zt.val[m];
+      dt[r] = jump ? req[r].A->jump.data() : req[r].A->dt[m].data();
+      val[r] = jump ? nullptr : req[r].A->val[m].data();
+    }
     for (unsigned int q = 0; q < nq; ++q)
     {
       const double *phi = &w_value[q * nw], *lap = &w_laplacian[q * nw];
       std::array<const double *, dim> gphi;
       for (unsigned int d = 0; d < dim; ++d)
         gphi[d] = &w_gradient[d][q * nw];
-      double zq = 0;
-      Tensor<1, dim> gz;
-      for (unsigned int l = 0; l < nw; ++l)
-      {
-        zq += z(l) * phi[l];
-        for (unsigned int d = 0; d < dim; ++d)
-          gz[d] += z(l) * gphi[d][l];
-      }
       const auto cf = coefficients(q, t);
       const double jx = wt * fv_p.JxW(q);
-      // the test side: zq (A) or delta b.grad y (S')
-      const double test = supg ? weak_form::supg_test(delta, cf.b, gz) : zq;
-      const double c_dt = jx * test;
-      for (unsigned int l = 0; l < nw; ++l)
-        dt[l] += c_dt * phi[l];
+      std::array<double, max_requests> c_dt{}, c_value{}, c_laplacian{};
+      std::array<Tensor<1, dim>, max_requests> c_gradient;
+      double zq = 0;
+      Tensor<1, dim> gz;
+      for (unsigned int r = 0; r < R; ++r)
+      {
+        if (r == 0 || z[r] != z[r - 1]) // zt at the point (once for the same zt)
+        {
+          zq = 0;
+          gz = Tensor<1, dim>();
+          const Vector<double> &zr = *z[r];
+          for (unsigned int l = 0; l < nw; ++l)
+          {
+            zq += zr(l) * phi[l];
+            for (unsigned int d = 0; d < dim; ++d)
+              gz[d] += zr(l) * gphi[d][l];
+          }
+        }
+        // the test side: zq (A) or delta b.grad y (S')
+        const bool supg = req[r].supg;
+        const double test = supg ? weak_form::supg_test(delta, cf.b, gz) : zq;
+        c_dt[r] = jx * test;
+        if (jump)
+          continue;
+        if (supg)
+        {
+          c_value[r] = c_dt[r] * cf.alpha;
+          c_laplacian[r] = -c_dt[r] * cf.eps;
+          c_gradient[r] = c_dt[r] * cf.b;
+          if (cw.active)
+            c_gradient[r] += jx * (transpose(cw.D) * gz);
+        }
+        else
+        {
+          c_value[r] = jx * cf.alpha * zq;
+          c_gradient[r] = jx * (cf.eps * gz + zq * cf.b);
+        }
+      }
+      for (unsigned int r = 0; r < R; ++r)
+        for (unsigned int l = 0; l < nw; ++l)
+          dt[r][l] += c_dt[r] * phi[l];
       if (jump)
         continue;
-      double c_value, c_laplacian = 0.;
-      Tensor<1, dim> c_gradient;
-      if (supg)
-      {
-        c_value = c_dt * cf.alpha;
-        c_laplacian = -c_dt * cf.eps;
-        c_gradient = c_dt * cf.b;
-        if (cw.active)
-          c_gradient += jx * (transpose(cw.D) * gz);
-      }
-      else
-      {
-        c_value = jx * cf.alpha * zq;
-        c_gradient = jx * (cf.eps * gz + zq * cf.b);
-      }
-      for (unsigned int l = 0; l < nw; ++l)
-      {
-        double v = c_value * phi[l] + c_laplacian * lap[l];
-        for (unsigned int d = 0; d < dim; ++d)
-          v += c_gradient[d] * gphi[d][l];
-        val[l] += v;
-      }
+      for (unsigned int r = 0; r < R; ++r)
+        for (unsigned int l = 0; l < nw; ++l)
+        {
+          double v = c_value[r] * phi[l] + c_laplacian[r] * lap[l];
+          for (unsigned int d = 0; d < dim; ++d)
+            v += c_gradient[r][d] * gphi[d][l];
+          val[r][l] += v;
+        }
     }
   }
 }
@@ -389,6 +427,8 @@ template void CellKernel<2>::adjoint_functional(double, double,
                                                 const std::vector<Vector<double>> &,
                                                 const SlabFunction &, bool,
                                                 SlabFunctional &) const;
+template void CellKernel<2>::adjoint_functionals(double, double,
+                                                 std::initializer_list<AdjointRequest>) const;
 template bool
 CellKernel<2>::dirichlet_data_functionals(double, double, const Vector<double> &,
                                           std::array<SlabFunctional, 2> &) const;

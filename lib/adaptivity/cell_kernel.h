@@ -18,6 +18,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <initializer_list>
 #include <unordered_map>
 #include <vector>
 
@@ -86,6 +87,20 @@ public:
   void adjoint_functional(double t0, double tau,
                           const std::vector<dealii::Vector<double>> &nodal,
                           const SlabFunction &zt, bool supg, SlabFunctional &A) const;
+
+  /// One adjoint_functional call's arguments.
+  struct AdjointRequest
+  {
+    const std::vector<dealii::Vector<double>> *nodal;
+    const SlabFunction *zt;
+    bool supg;
+    SlabFunctional *A;
+  };
+  /// Several adjoint_functional calls of one slab at once: where the coefficients depend
+  /// on time, one pass over the points evaluates them once for all requests (and zt once
+  /// for consecutive requests of the same zt). At most 3 requests.
+  void adjoint_functionals(double t0, double tau,
+                           std::initializer_list<AdjointRequest> requests) const;
 
   /// The Dirichlet data's share of the error, -int_I int_{Gamma_D} eps (g_tau - u) d_n z
   /// ds dt (the term the error identity gains where u_h interpolates g instead of taking

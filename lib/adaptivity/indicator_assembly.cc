@@ -127,9 +127,10 @@ void IndicatorAssembly<dim>::add_slab(unsigned int n, unsigned int c,
   slab_function(kernel, basis, tau, z_nodes, z);
   restrict_weights(n);
   slab_function(kernel, basis, tau, Rz_nodes, Rh_z);
-  kernel.adjoint_functional(t0, tau, Rz_nodes, Rh_z, false, adjoint_form_Rhz);
-  kernel.adjoint_functional(t0, tau, Rz_nodes, Rh_z, true, supg_derivative_Rhz);
-  kernel.adjoint_functional(t0, tau, z_nodes, z, false, adjoint_form_z);
+  kernel.adjoint_functionals(t0, tau,
+                             {{&Rz_nodes, &Rh_z, false, &adjoint_form_Rhz},
+                              {&Rz_nodes, &Rh_z, true, &supg_derivative_Rhz},
+                              {&z_nodes, &z, false, &adjoint_form_z}});
   kernel.goal_functional(tau, goal_vector_I, goal_derivative);
   const bool last = n + 1 == N;
   slab_function(kernel, basis, tau, u_nodes, u);
