@@ -16,6 +16,25 @@ using namespace dealii;
 namespace sv = short_vectors;
 
 template <int dim>
+template <typename Out>
+void CellKernel<dim>::rhs_at_points(double t0, double tau, const FEValues<dim> &fv,
+                                    const Out &out) const
+{
+  std::vector<double> &times = times_scratch;
+  times.resize(g.size());
+  for (unsigned int m = 0; m < g.size(); ++m)
+    times[m] = t0 + g[m] * tau;
+  double values[16];
+  AssertThrow(g.size() <= 16, ExcMessage("rhs_at_points: at most 16 temporal points"));
+  for (unsigned int q = 0; q < fv.n_quadrature_points; ++q)
+  {
+    scene.rhs_at_times(fv.quadrature_point(q), times, values);
+    for (unsigned int m = 0; m < g.size(); ++m)
+      out(m, q) = values[m];
+  }
+}
+
+template <int dim>
 void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<double> &Un,
                                          const Vector<double> *Uprev, SlabFunctional &rho,
                                          SlabFunctional &supg) const
@@ -30,6 +49,9 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
   ct.reinit(np, true);
   // the matrices act on u's nodal coefficients, once per temporal node (not per point)
   nodal_products(Un);
+  if (!constant_coefficients) // f at every point, all temporal points at once
+    rhs_at_points(t0, tau, fv_p, [this](unsigned int m, unsigned int q) -> double &
+                  { return f_at[m][q]; });
   for (unsigned int m = 0; m < g.size(); ++m)
   {
     const double t = t0 + g[m] * tau, wt = tau * omega[m];
@@ -54,7 +76,7 @@ void CellKernel<dim>::primal_functionals(double t0, double tau, const Vector<dou
         lap += c(l) * trace(fv_p.shape_hessian(l, q));
       }
       const auto cf = coefficients(q, t);
-      const double f = f_at[m][q] = scene.rhs(fv_p.quadrature_point(q), t);
+      const double f = f_at[m][q];
       const double R = weak_form::residual(cf, f, ut, uh, grad, lap);
       const double jx = fv_p.JxW(q) * wt;
       for (unsigned int l = 0; l < nw; ++l)
@@ -100,6 +122,15 @@ void CellKernel<dim>::load_quadrature_error(double t0, double tau, bool first_sl
     return [&, t](unsigned int q)
     { return scene.convection(fv_lo.quadrature_point(q), t); };
   };
+  // f on the low-order rule at every temporal point (after primal_functionals: f_at
+  // holds f on the cell rule)
+  std::vector<double> &f_lo = f_scratch;
+  if (!separable_load)
+  {
+    f_lo.resize(g.size() * fv_lo.n_quadrature_points);
+    rhs_at_points(t0, tau, fv_lo, [&](unsigned int m, unsigned int q) -> double &
+                  { return f_lo[m * fv_lo.n_quadrature_points + q]; });
+  }
   for (unsigned int m = 0; m < g.size(); ++m)
   {
     const double t = t0 + g[m] * tau, wt = tau * omega[m];
@@ -120,7 +151,7 @@ void CellKernel<dim>::load_quadrature_error(double t0, double tau, bool first_sl
         [&](unsigned int q) { return coefficients(q, t).b; }, D.val[m]);
     add(
         fv_lo, fv_lo, -wt,
-        [&](unsigned int q) { return scene.rhs(fv_lo.quadrature_point(q), t); }, b_lo(t),
+        [&](unsigned int q) { return f_lo[m * fv_lo.n_quadrature_points + q]; }, b_lo(t),
         D.val[m]);
   }
   if (!first_slab)

@@ -256,9 +256,14 @@ private:
   std::vector<LoadTerm<dim>> load_terms;
   /// f at [Gauss point m][quadrature point q] as primal_functionals evaluated it
   mutable std::vector<std::vector<double>> f_at;
+  mutable std::vector<double> times_scratch, f_scratch; // rhs_at_times' times and values
   /// a_j(t) by t: the same few temporal Gauss points recur on every cell
   mutable std::unordered_map<double, std::vector<double>> load_factors;
   const std::vector<double> &load_factors_at(double t) const;
+  /// out(m, q) = f(x_q, t0 + g[m] tau) on the points of fv (Scene::rhs_at_times)
+  template <typename Out>
+  void rhs_at_points(double t0, double tau, const dealii::FEValues<dim> &fv,
+                     const Out &out) const;
   void build_cell_matrices();
   /// A separable load's vectors (g_j, w_l) and (g_j, b.grad w_l) per term j on the rule of
   /// fv (W's shapes, the weights and points).

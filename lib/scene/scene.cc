@@ -34,6 +34,35 @@ template <int dim> double Scene<dim>::rhs(const dealii::Point<dim> &x, double t)
 }
 
 template <int dim>
+void Scene<dim>::rhs_at_times(const dealii::Point<dim> &x, const std::vector<double> &times,
+                              double *out) const
+{
+  for (std::size_t k = 0; k < times.size(); ++k)
+    out[k] = rhs(x, times[k]);
+}
+
+template <int dim>
+void Scene<dim>::exact_rhs_at_times(const dealii::Point<dim> &x,
+                                    const std::vector<double> &times, double *out) const
+{
+  const auto &u = require_exact(exact(), "rhs()");
+  if (!u.separable())
+  {
+    Scene<dim>::rhs_at_times(x, times, out);
+    return;
+  }
+  double S, lap;
+  dealii::Tensor<1, dim> grad;
+  u.space_jet(x, S, grad, lap);
+  for (std::size_t k = 0; k < times.size(); ++k) // the products of rhs()
+  {
+    const double t = times[k], T = u.time_factor(t, 0), dT = u.time_factor(t, 1);
+    out[k] = S * dT - epsilon * (lap * T) + convection(x, t) * (grad * T) +
+             reaction(x, t) * (S * T);
+  }
+}
+
+template <int dim>
 bool Scene<dim>::separable_rhs(std::vector<LoadTerm<dim>> &terms) const
 {
   terms.clear();

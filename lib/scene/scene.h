@@ -123,6 +123,11 @@ public:
   /// solution when b and alpha do not depend on t. A scene that overrides rhs()
   /// overrides this too.
   virtual bool separable_rhs(std::vector<LoadTerm<dim>> &terms) const;
+  /// out[k] = rhs(x, times[k]) for every k: the loads and the estimator ask for f at a
+  /// point at all temporal quadrature points of a slab at once. The default calls rhs()
+  /// per time; a scene whose f is the default rhs() may forward to exact_rhs_at_times.
+  virtual void rhs_at_times(const dealii::Point<dim> &x, const std::vector<double> &times,
+                            double *out) const;
   virtual double initial_value(const dealii::Point<dim> &x) const;
   virtual double dirichlet_value(const dealii::Point<dim> &x, double t) const;
   /// eps grad u . n on the Neumann boundary.
@@ -180,6 +185,11 @@ public:
   std::set<dealii::types::boundary_id> neumann_ids;
 
 protected:
+  /// rhs_at_times for the default rhs() (f from the exact solution): a separable
+  /// solution's S, grad S and Lap S once for all times.
+  void exact_rhs_at_times(const dealii::Point<dim> &x, const std::vector<double> &times,
+                          double *out) const;
+
   std::unique_ptr<ExactSolution<dim>> exact_solution;
 };
 

@@ -52,6 +52,11 @@ public:
   dealii::Tensor<1, 2> convection(const dealii::Point<2> &, double) const override;
   double reaction(const dealii::Point<2> &, double) const override;
   bool coefficients_depend_on_time() const override { return rotating; }
+  void rhs_at_times(const dealii::Point<2> &x, const std::vector<double> &times,
+                    double *out) const override
+  {
+    exact_rhs_at_times(x, times, out);
+  }
 
 private:
   bool rotating = false;
@@ -82,6 +87,8 @@ public:
     double (*f)(double);
     double (*df)(double);
     double (*ddf)(double);
+    /// f, f', f'' at once (optional; space_jet uses it where the three share work)
+    void (*jet)(double, double &, double &, double &) = nullptr;
   };
   SeparableSolution(Factor X, Factor Y, double (*T)(double), double (*dT)(double))
       : X(X), Y(Y), T(T), dT(dT)

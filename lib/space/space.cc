@@ -191,11 +191,12 @@ void Space<dim>::assemble_matrices(double t, double tau, SpatialMatrices &m) con
 template <int dim>
 void Space<dim>::assemble_volume_loads(
     unsigned int n_sources, double tau,
-    const std::function<double(const Point<dim> &, unsigned int)> &f,
+    const std::function<void(const Point<dim> &, double *)> &f,
     const std::function<Tensor<1, dim>(const Point<dim> &, unsigned int)> &b,
     std::vector<Vector<double>> &F) const
 {
-  // one pass over the cells for all sources: the shape values are computed once
+  // one pass over the cells for all sources: the shape values are computed once, the
+  // sources at a point all at once (f_k(x) for all k)
   F.resize(n_sources);
   for (auto &v : F)
     v.reinit(dofs.n_dofs());
@@ -203,21 +204,24 @@ void Space<dim>::assemble_volume_loads(
   FEValues<dim> fv(map, fe, quad,
                    update_values | update_gradients | update_quadrature_points |
                        update_JxW_values);
-  const unsigned int n = fe.n_dofs_per_cell();
+  const unsigned int n = fe.n_dofs_per_cell(), nq = quad.size();
   Vector<double> cf(n);
+  std::vector<double> fx(nq * n_sources); // fx[q * n_sources + k] = f_k(x_q)
   std::vector<types::global_dof_index> idx(n);
   for (const auto &cell : dofs.active_cell_iterators())
   {
     fv.reinit(cell);
     cell->get_dof_indices(idx);
     const double dK = delta(cell, tau);
+    for (unsigned int q = 0; q < nq; ++q)
+      f(fv.quadrature_point(q), &fx[q * n_sources]);
     for (unsigned int k = 0; k < n_sources; ++k)
     {
       cf = 0.;
-      for (unsigned int q = 0; q < quad.size(); ++q)
+      for (unsigned int q = 0; q < nq; ++q)
       {
         const Point<dim> &x = fv.quadrature_point(q);
-        const double fq = f(x, k) * fv.JxW(q);
+        const double fq = fx[q * n_sources + k] * fv.JxW(q);
         if (fq == 0.)
           continue;
         if (dK == 0.)
@@ -278,7 +282,7 @@ void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
   if (!scene.separable_rhs(terms))
     assemble_volume_loads(
         times.size(), tau,
-        [&](const Point<dim> &x, unsigned int k) { return scene.rhs(x, times[k]); },
+        [&](const Point<dim> &x, double *out) { scene.rhs_at_times(x, times, out); },
         [&](const Point<dim> &x, unsigned int k)
         { return scene.convection(x, times[k]); },
         F);
@@ -295,7 +299,11 @@ void Space<dim>::assemble_loads(const std::vector<double> &times, double tau,
       G = load_terms.emplace(key, std::vector<Vector<double>>()).first;
       assemble_volume_loads(
           terms.size(), tau,
-          [&](const Point<dim> &x, unsigned int j) { return terms[j].g(x); },
+          [&](const Point<dim> &x, double *out)
+          {
+            for (std::size_t j = 0; j < terms.size(); ++j)
+              out[j] = terms[j].g(x);
+          },
           [&](const Point<dim> &x, unsigned int) { return scene.convection(x, 0.); },
           G->second);
     }
@@ -314,7 +322,7 @@ template <int dim> void Space<dim>::assemble_initial(double tau, Vector<double> 
 {
   std::vector<Vector<double>> F;
   assemble_volume_loads(
-      1, tau, [&](const Point<dim> &x, unsigned int) { return scene.initial_value(x); },
+      1, tau, [&](const Point<dim> &x, double *out) { *out = scene.initial_value(x); },
       [&](const Point<dim> &x, unsigned int) { return scene.convection(x, 0.); }, F);
   U0 = std::move(F[0]);
 }

@@ -145,11 +145,11 @@ private:
   dealii::AffineConstraints<double> homogeneous;
   dealii::SparsityPattern pattern;
 
-  /// sum_k f_k(x, k) (phi_i + delta_K b_k(x).grad phi_i) over the cells, one vector per
-  /// k.
+  /// sum_k f_k(x) (phi_i + delta_K b_k(x).grad phi_i) over the cells, one vector per
+  /// k; f(x, out) sets out[k] = f_k(x) for all k at once.
   void assemble_volume_loads(
       unsigned int n_sources, double tau,
-      const std::function<double(const dealii::Point<dim> &, unsigned int)> &f,
+      const std::function<void(const dealii::Point<dim> &, double *)> &f,
       const std::function<dealii::Tensor<1, dim>(const dealii::Point<dim> &,
                                                  unsigned int)> &b,
       std::vector<dealii::Vector<double>> &F) const;
