@@ -40,11 +40,11 @@ std::vector<Entry> solver_entries()
        "percent faster there."},
       {"solver", "time_interpolation", "true", m(&S::time_interpolation), boolean,
        "Coefficients that depend on time: assemble the spatial matrices once per loop at "
-       "4 Chebyshev points of [0, T] (per slab length where delta_K depends on it, for "
-       "the first two slab lengths met) and, "
-       "where their cubic interpolant reproduces the matrices assembled at two further "
-       "times to 1e-12 relative (b and alpha polynomial in t of degree <= 3 with the "
-       "SUPG terms), build each slab operator from them (the 4 node matrices as its "
+       "a few times of [0, T] (per slab length where delta_K depends on it, for the "
+       "first two slab lengths met) and, where their interpolant of the lowest degree "
+       "d <= 3 reproduces the matrices assembled at two further times to 1e-12 relative "
+       "(d + 3 assemblies; the matrices, SUPG terms included, polynomial in t of degree "
+       "<= 3), build each slab operator from them (the d + 1 node matrices as its "
        "Kronecker terms) instead of assembling the temporal quadrature points' matrices; "
        "otherwise, and with false, every slab assembles its own."},
       {"solver", "reuse_factorization", "true", m(&S::reuse_factorization), boolean,

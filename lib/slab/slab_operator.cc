@@ -243,7 +243,7 @@ void SlabOperator<dim>::assemble_terms(double t_start, double tau_n, bool consta
 }
 
 template <int dim>
-void SlabOperator<dim>::add_node_terms(const std::vector<SpatialMatrices> &nodes,
+void SlabOperator<dim>::add_node_terms(const TimeInterpolation &ti,
                                        const TemporalFactors &f, double t_start,
                                        double tau_n)
 {
@@ -251,17 +251,18 @@ void SlabOperator<dim>::add_node_terms(const std::vector<SpatialMatrices> &nodes
   // terms are the node matrices, each with its share of the temporal factors, so that no
   // quadrature point's matrices are formed.
   const unsigned int m = basis.n_dofs(), nq = f.points.size();
+  const std::vector<SpatialMatrices> &nodes = ti.at_nodes;
   std::vector<FullMatrix<double>> TM(nodes.size(), FullMatrix<double>(m, m)), TA = TM;
   for (unsigned int q = 0; q < nq; ++q)
   {
-    const std::vector<double> l = time_node_weights(t_start + f.points[q] * tau_n);
+    const std::vector<double> l = lagrange_weights(ti.times, t_start + f.points[q] * tau_n);
     for (unsigned int c = 0; c < nodes.size(); ++c)
     {
       TM[c].add(l[c], f.Tm[q]);
       TA[c].add(l[c], f.Ta[q]);
     }
   }
-  const std::vector<double> lj = time_node_weights(t_start);
+  const std::vector<double> lj = lagrange_weights(ti.times, t_start);
   for (unsigned int c = 0; c < nodes.size(); ++c)
   {
     TM[c].add(lj[c], f.Tj);

@@ -63,6 +63,9 @@ struct SolverTotals
   }
 };
 const SolverTotals &solver_totals();
+/// The Lagrange polynomials of the points `nodes` at t (the weights of the node
+/// matrices of an interpolation in time).
+std::vector<double> lagrange_weights(const std::vector<double> &nodes, double t);
 namespace detail
 {
 /// The totals SlabOperator's solves add to (slab_operator.cc, slab_krylov.cc).
@@ -167,24 +170,24 @@ private:
     unsigned int max_iterations = 0;
     bool stale = true;
   } frozen;
-  /// Coefficients that depend on time: the spatial matrices at the Chebyshev points of
-  /// [0, T] (one set per slab length where delta_K depends on it, for at most two slab
-  /// lengths: the slabs of any other length assemble their own). Where their
-  /// polynomial interpolant reproduces the assembled matrices at two further times to
-  /// 1e-12 relative (coefficients polynomial in t, as in the manufactured rotating
-  /// field), each temporal quadrature point's matrices are the interpolant's linear
-  /// combination of them instead of an assembly.
+  /// Coefficients that depend on time: the spatial matrices at a few times of [0, T]
+  /// (one set per slab length where delta_K depends on it, for at most two slab lengths:
+  /// the slabs of any other length assemble their own). Where their polynomial
+  /// interpolant of the lowest degree d <= 3 that reproduces the assembled matrices at
+  /// two further times to 1e-12 relative exists (coefficients polynomial in t, as in the
+  /// manufactured rotating field: d = 2 with SUPG), each temporal quadrature point's
+  /// matrices are the interpolant's linear combination of its d + 1 node matrices
+  /// instead of an assembly.
   struct TimeInterpolation
   {
-    /// empty where the interpolant is not exact
+    std::vector<double> times;
+    /// empty where no interpolant is exact
     std::vector<SpatialMatrices> at_nodes;
   };
   std::map<double, TimeInterpolation> interpolation;
-  /// The node matrices of the interpolation in time for slabs of length tau_n (built and
-  /// checked on first use), or null where it is off, not exact or not kept.
-  const std::vector<SpatialMatrices> *time_nodes(double tau_n);
-  /// The weights of the node matrices at time t (Lagrange polynomials of the nodes).
-  std::vector<double> time_node_weights(double t) const;
+  /// The interpolation in time for slabs of length tau_n (built and checked on first
+  /// use), or null where it is off, not exact or not kept.
+  const TimeInterpolation *time_nodes(double tau_n);
   /// The spatial matrices at time t for slabs of length tau_n: interpolated where the
   /// check passed, else assembled. With `mass_only`, an interpolation forms M only.
   void matrices_at(double t, double tau_n, SpatialMatrices &m, bool mass_only = false);
@@ -210,7 +213,7 @@ private:
     dealii::FullMatrix<double> Tj;
   };
   /// assemble_terms' terms from the node matrices of the interpolation in time.
-  void add_node_terms(const std::vector<SpatialMatrices> &nodes, const TemporalFactors &f,
+  void add_node_terms(const TimeInterpolation &nodes, const TemporalFactors &f,
                       double t_start, double tau_n);
   /// assemble_terms' terms from the spatial matrices at each Gauss point.
   void add_quadrature_terms(const TemporalFactors &f, double t_start, double tau_n);

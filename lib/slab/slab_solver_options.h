@@ -48,8 +48,8 @@ struct SlabSolverOptions
 {
   SolverType type = SolverType::direct;
   bool reuse_factorization = true;
-  /// coefficients that depend on time: interpolate the spatial matrices in time from
-  /// the Chebyshev points of [0, T] where that is exact (SlabOperator::matrices_at)
+  /// coefficients that depend on time: interpolate the spatial matrices in time by the
+  /// lowest degree (<= 3) that is exact (SlabOperator::matrices_at)
   bool time_interpolation = true;
   /// the sparse direct solver (direct solves, fallbacks)
   DirectEngine direct_solver = DirectEngine::umfpack;

@@ -1,6 +1,7 @@
 // The spatial matrices of a slab operator whose coefficients depend on time, at a
-// temporal quadrature point: interpolated in time from the Chebyshev points of [0, T]
-// where that reproduces the assembly (SlabOperator::matrices_at), else assembled.
+// temporal quadrature point: interpolated in time from a few times of [0, T] by the
+// polynomial of the lowest degree (<= 3) that reproduces the assembly
+// (SlabOperator::matrices_at), else assembled.
 #include "slab/slab_operator.h"
 
 #include <deal.II/lac/affine_constraints.h>
@@ -16,34 +17,26 @@ using namespace dealii;
 
 namespace
 {
-constexpr unsigned int n_time_nodes = 4;
-/// Slab lengths whose node matrices are kept (each holds n_time_nodes sets of M, A,
-/// M_c, A_c).
+constexpr unsigned int max_degree = 3;
+/// The times of [0, T] (fractions of T) assembled in turn: the interpolant of degree d
+/// takes the first d + 1 as its nodes and is checked at the next two, so that d = 1, 2,
+/// 3 need 4, 5, 6 assemblies. The first four are the Chebyshev points of degree 3
+/// (outer pair first), the checks of d = 3 two points away from them.
+constexpr std::array<double, max_degree + 3> sample_times{
+    {0.03806023374435663, 0.9619397662556434, 0.3086582838174551, 0.6913417161825449,
+     0.3819660112501051, 0.8541019662496845}};
+/// Slab lengths whose node matrices are kept (each holds up to max_degree + 1 sets of
+/// M, A, M_c, A_c).
 constexpr std::size_t max_time_interpolations = 2;
 
-/// The Chebyshev points of [0, T] (n_time_nodes of them).
-double time_node(unsigned int k, double T)
+/// m := sum_k l_k(t) at_nodes[k] (l_k the Lagrange polynomials of the node times; the
+/// first times.size() entries of at_nodes), for the parts M, A, M_c, A_c named in
+/// `parts` (0..3).
+void interpolate(const std::vector<SpatialMatrices> &at_nodes,
+                 const std::vector<double> &times, double t, SpatialMatrices &m,
+                 std::initializer_list<unsigned int> parts = {0, 1, 2, 3})
 {
-  return 0.5 * T * (1. - std::cos((2. * k + 1.) * M_PI / (2. * n_time_nodes)));
-}
-
-/// The Lagrange polynomials of the time nodes at t.
-std::vector<double> time_node_weights(double t, double T)
-{
-  std::vector<double> l(n_time_nodes, 1.);
-  for (unsigned int k = 0; k < n_time_nodes; ++k)
-    for (unsigned int j = 0; j < n_time_nodes; ++j)
-      if (j != k)
-        l[k] *= (t - time_node(j, T)) / (time_node(k, T) - time_node(j, T));
-  return l;
-}
-
-/// m := sum_k l_k(t) at_nodes[k] (l_k the Lagrange polynomials of the time nodes),
-/// for the parts M, A, M_c, A_c named in `parts` (0..3).
-void interpolate(const std::vector<SpatialMatrices> &at_nodes, double t, double T,
-                 SpatialMatrices &m, std::initializer_list<unsigned int> parts = {0, 1, 2, 3})
-{
-  const std::vector<double> l = time_node_weights(t, T);
+  const std::vector<double> l = lagrange_weights(times, t);
   const auto out = [&m](unsigned int p)
   { return std::array<SparseMatrix<double> *, 4>{{&m.M, &m.A, &m.Mc, &m.Ac}}[p]; };
   const auto in = [](const SpatialMatrices &x, unsigned int p)
@@ -56,7 +49,7 @@ void interpolate(const std::vector<SpatialMatrices> &at_nodes, double t, double 
       continue;
     }
     out(p)->reinit(in(at_nodes[0], p)->get_sparsity_pattern());
-    for (unsigned int k = 0; k < n_time_nodes; ++k)
+    for (unsigned int k = 0; k < times.size(); ++k)
       out(p)->add(l[k], *in(at_nodes[k], p));
   }
 }
@@ -75,24 +68,41 @@ void constrained_diagonal(const AffineConstraints<double> &constraints,
     }
 }
 
-/// True if a and b agree to 1e-12 relative in each of M, A, M_c, A_c (Frobenius norm);
-/// b is overwritten by b - a.
-bool agree(const SpatialMatrices &a, SpatialMatrices &b)
+/// True if the interpolant of `nodes` (at `times`) reproduces `assembled` at t to 1e-12
+/// relative in each of M, A, M_c, A_c (Frobenius norm); one part at a time, so that
+/// the check holds one matrix beside the nodes.
+bool reproduces(const std::vector<SpatialMatrices> &nodes, const std::vector<double> &times,
+                double t, const SpatialMatrices &assembled)
 {
-  for (const auto &[x, y] : {std::pair{&a.M, &b.M}, std::pair{&a.A, &b.A},
-                             std::pair{&a.Mc, &b.Mc}, std::pair{&a.Ac, &b.Ac}})
+  for (const unsigned int p : {0u, 1u, 2u, 3u})
   {
-    const double norm = x->frobenius_norm();
-    y->add(-1., *x);
-    if (!(y->frobenius_norm() <= 1e-12 * norm))
+    SpatialMatrices m;
+    interpolate(nodes, times, t, m, {p});
+    SparseMatrix<double> &y = *std::array<SparseMatrix<double> *, 4>{{&m.M, &m.A, &m.Mc, &m.Ac}}[p];
+    const SparseMatrix<double> &x = *std::array<const SparseMatrix<double> *, 4>{
+        {&assembled.M, &assembled.A, &assembled.Mc, &assembled.Ac}}[p];
+    const double norm = x.frobenius_norm();
+    y.add(-1., x);
+    if (!(y.frobenius_norm() <= 1e-12 * norm))
       return false;
   }
   return true;
 }
 } // namespace
 
+std::vector<double> lagrange_weights(const std::vector<double> &nodes, double t)
+{
+  std::vector<double> l(nodes.size(), 1.);
+  for (unsigned int k = 0; k < nodes.size(); ++k)
+    for (unsigned int j = 0; j < nodes.size(); ++j)
+      if (j != k)
+        l[k] *= (t - nodes[j]) / (nodes[k] - nodes[j]);
+  return l;
+}
+
 template <int dim>
-const std::vector<SpatialMatrices> *SlabOperator<dim>::time_nodes(double tau_n)
+const typename SlabOperator<dim>::TimeInterpolation *
+SlabOperator<dim>::time_nodes(double tau_n)
 {
   if (!opt.time_interpolation)
     return nullptr;
@@ -105,52 +115,60 @@ const std::vector<SpatialMatrices> *SlabOperator<dim>::time_nodes(double tau_n)
     return nullptr; // memory: at most two slab lengths keep their node matrices
   if (it == interpolation.end())
   {
+    // the matrices at sample_times[i] T, assembled as the checks ask for them
+    std::vector<SpatialMatrices> at;
+    std::vector<double> times;
+    const auto sample = [&](unsigned int i) -> const SpatialMatrices &
+    {
+      while (at.size() <= i)
+      {
+        times.push_back(sample_times[at.size()] * T);
+        at.emplace_back();
+        space.assemble_matrices(times.back(), tau_n, at.back());
+        ++time.n_spatial_assemblies;
+        // all carry the first one's constrained diagonal: their combinations (weights
+        // summing to 1) then carry it too
+        constrained_diagonal(space.constraints(), at[0], at.back());
+      }
+      return at[i];
+    };
     TimeInterpolation ti;
-    ti.at_nodes.resize(n_time_nodes);
-    for (unsigned int k = 0; k < n_time_nodes; ++k)
+    for (unsigned int d = 1; d <= max_degree && ti.at_nodes.empty(); ++d)
     {
-      space.assemble_matrices(time_node(k, T), tau_n, ti.at_nodes[k]);
-      // all nodes carry the first one's constrained diagonal: their combinations
-      // (weights summing to 1) then carry it too
-      constrained_diagonal(space.constraints(), ti.at_nodes[0], ti.at_nodes[k]);
+      sample(d);
+      const std::vector<double> node_times(times.begin(), times.begin() + d + 1);
+      bool exact = true;
+      for (unsigned int c = d + 1; c < d + 3 && exact; ++c)
+      {
+        const SpatialMatrices &check = sample(c);
+        exact = reproduces(at, node_times, times[c], check);
+      }
+      if (exact)
+      {
+        at.resize(d + 1);
+        times.resize(d + 1);
+        ti.at_nodes = std::move(at);
+        ti.times = std::move(times);
+      }
     }
-    time.n_spatial_assemblies += n_time_nodes;
-    bool exact = true;
-    for (const double check : {0.3819660112501051 * T, 0.8541019662496845 * T})
-    {
-      SpatialMatrices assembled, interpolated;
-      space.assemble_matrices(check, tau_n, assembled);
-      ++time.n_spatial_assemblies;
-      constrained_diagonal(space.constraints(), ti.at_nodes[0], assembled);
-      interpolate(ti.at_nodes, check, T, interpolated);
-      exact = exact && agree(assembled, interpolated);
-    }
-    if (!exact)
-      ti.at_nodes.clear();
-    else if (opt.transposed_only) // only the lift (solve, not transposed) reads A
+    if (opt.transposed_only) // only the lift (solve, not transposed) reads A
       for (auto &node : ti.at_nodes)
         node.A.clear();
     it = interpolation.emplace(key, std::move(ti)).first;
   }
-  return it->second.at_nodes.empty() ? nullptr : &it->second.at_nodes;
-}
-
-template <int dim>
-std::vector<double> SlabOperator<dim>::time_node_weights(double t) const
-{
-  return anisodwr::time_node_weights(t, space.scene.end_time);
+  return it->second.at_nodes.empty() ? nullptr : &it->second;
 }
 
 template <int dim>
 void SlabOperator<dim>::matrices_at(double t, double tau_n, SpatialMatrices &m,
                                     bool mass_only)
 {
-  if (const auto *nodes = time_nodes(tau_n))
+  if (const auto *ti = time_nodes(tau_n))
   {
     if (mass_only)
-      interpolate(*nodes, t, space.scene.end_time, m, {0});
+      interpolate(ti->at_nodes, ti->times, t, m, {0});
     else
-      interpolate(*nodes, t, space.scene.end_time, m);
+      interpolate(ti->at_nodes, ti->times, t, m);
     ++time.n_interpolated;
   }
   else
@@ -160,7 +178,6 @@ void SlabOperator<dim>::matrices_at(double t, double tau_n, SpatialMatrices &m,
   }
 }
 
-template const std::vector<SpatialMatrices> *SlabOperator<2>::time_nodes(double);
-template std::vector<double> SlabOperator<2>::time_node_weights(double) const;
+template const SlabOperator<2>::TimeInterpolation *SlabOperator<2>::time_nodes(double);
 template void SlabOperator<2>::matrices_at(double, double, SpatialMatrices &, bool);
 } // namespace anisodwr
