@@ -297,31 +297,33 @@ TEST(Iterative, SpatialMatricesInterpolatedInTimeWhereExact)
     SlabProblem s("manufactured", "rotating", 2, 1e-2);
     march_both_ways(*s.space, 5u);
   }
-  const auto custom = [](const std::string &convection)
+  // a custom scene with the convection b on a 4 x 4 mesh, SUPG's delta0 given
+  struct Custom
   {
-    return create_scene<2>(Parameters::from_overrides(
-        {"scene.name=custom", "scene.epsilon=0.01", "scene.end_time=0.5",
-         "scene.convection=" + convection, "scene.reaction=1", "scene.rhs=1",
-         "scene.initial_value=0", "scene.dirichlet=0, 1, 2, 3: 0"}));
+    std::unique_ptr<Scene<2>> scene;
+    Triangulation<2> tria;
+    std::unique_ptr<Space<2>> space;
+    Custom(const std::string &convection, double delta0)
+        : scene(create_scene<2>(Parameters::from_overrides(
+              {"scene.name=custom", "scene.epsilon=0.01", "scene.end_time=0.5",
+               "scene.convection=" + convection, "scene.reaction=1", "scene.rhs=1",
+               "scene.initial_value=0", "scene.dirichlet=0, 1, 2, 3: 0"})))
+    {
+      scene->make_coarse_grid(tria);
+      tria.refine_global(2);
+      space = std::make_unique<Space<2>>(*scene, tria, 1,
+                                         Stabilization{delta0, SupgLength::volume, 0.});
+      space->setup();
+    }
   };
   {
-    const auto scene = custom("1 + t; 0.5 - t");
-    Triangulation<2> tria;
-    scene->make_coarse_grid(tria);
-    tria.refine_global(2);
-    Space<2> space(*scene, tria, 1, Stabilization{0., SupgLength::volume, 0.});
-    space.setup();
-    march_both_ways(space, 4u);
+    const Custom linear("1 + t; 0.5 - t", 0.);
+    march_both_ways(*linear.space, 4u);
   }
   {
-    const auto scene = custom("cos(3*t); sin(3*t)");
-    Triangulation<2> tria;
-    scene->make_coarse_grid(tria);
-    tria.refine_global(2);
-    Space<2> space(*scene, tria, 1, Stabilization{1.0, SupgLength::volume, 0.});
-    space.setup();
-    ASSERT_TRUE(scene->coefficients_depend_on_time());
-    SlabOperator<2> op(space, basis, SlabSolverOptions::direct(true));
+    const Custom trigonometric("cos(3*t); sin(3*t)", 1.);
+    ASSERT_TRUE(trigonometric.scene->coefficients_depend_on_time());
+    SlabOperator<2> op(*trigonometric.space, basis, SlabSolverOptions::direct(true));
     op.prepare(0.1, 0.05);
     EXPECT_EQ(op.timings().n_interpolated, 0u);
     EXPECT_EQ(op.timings().n_spatial_assemblies, 5u + basis.n_dofs() + 2);
