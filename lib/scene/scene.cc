@@ -15,6 +15,17 @@ const ExactSolution<dim> &require_exact(const ExactSolution<dim> *u, const char 
         std::string("scene has no exact solution and does not override ") + what);
   return *u;
 }
+/// f = S T' - eps Lap S T + b.grad S T + alpha S T at (x, t) for a separable exact
+/// solution u = T(t) S(x), from S, grad S, Lap S at x.
+template <int dim>
+double separable_rhs_at(const Scene<dim> &scene, const ExactSolution<dim> &u,
+                        const dealii::Point<dim> &x, double t, double S,
+                        const dealii::Tensor<1, dim> &grad, double lap)
+{
+  const double T = u.time_factor(t, 0), dT = u.time_factor(t, 1);
+  return S * dT - scene.epsilon * (lap * T) + scene.convection(x, t) * (grad * T) +
+         scene.reaction(x, t) * (S * T);
+}
 } // namespace
 
 template <int dim> double Scene<dim>::rhs(const dealii::Point<dim> &x, double t) const
@@ -22,12 +33,10 @@ template <int dim> double Scene<dim>::rhs(const dealii::Point<dim> &x, double t)
   const auto &u = require_exact(exact(), "rhs()");
   if (u.separable()) // the factors once each (the same products as below)
   {
-    const double T = u.time_factor(t, 0), dT = u.time_factor(t, 1);
     double S, lap;
     dealii::Tensor<1, dim> grad;
     u.space_jet(x, S, grad, lap);
-    return S * dT - epsilon * (lap * T) + convection(x, t) * (grad * T) +
-           reaction(x, t) * (S * T);
+    return separable_rhs_at(*this, u, x, t, S, grad, lap);
   }
   return u.time_derivative(x, t) - epsilon * u.laplacian(x, t) +
          convection(x, t) * u.gradient(x, t) + reaction(x, t) * u.value(x, t);
@@ -54,12 +63,8 @@ void Scene<dim>::exact_rhs_at_times(const dealii::Point<dim> &x,
   double S, lap;
   dealii::Tensor<1, dim> grad;
   u.space_jet(x, S, grad, lap);
-  for (std::size_t k = 0; k < times.size(); ++k) // the products of rhs()
-  {
-    const double t = times[k], T = u.time_factor(t, 0), dT = u.time_factor(t, 1);
-    out[k] = S * dT - epsilon * (lap * T) + convection(x, t) * (grad * T) +
-             reaction(x, t) * (S * T);
-  }
+  for (std::size_t k = 0; k < times.size(); ++k)
+    out[k] = separable_rhs_at(*this, u, x, times[k], S, grad, lap);
 }
 
 template <int dim>

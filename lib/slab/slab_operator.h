@@ -213,7 +213,7 @@ private:
     dealii::FullMatrix<double> Tj;
   };
   /// assemble_terms' terms from the node matrices of the interpolation in time.
-  void add_node_terms(const TimeInterpolation &nodes, const TemporalFactors &f,
+  void add_node_terms(const TimeInterpolation &ti, const TemporalFactors &f,
                       double t_start, double tau_n);
   /// assemble_terms' terms from the spatial matrices at each Gauss point.
   void add_quadrature_terms(const TemporalFactors &f, double t_start, double tau_n);
