@@ -248,6 +248,10 @@ INSTANTIATE_TEST_SUITE_P(TemporalDegreeAndCoefficients, AdjointLocalization,
                                                               "constant+crosswind",
                                                               "constant+crosswind_scaled")));
 
+/// a and b cell by cell, slab by slab and part by part within rel times the largest cell
+/// indicator (rel = 0: bit for bit).
+void expect_indicators_near(const Indicators<2> &a, const Indicators<2> &b, double rel);
+
 // TimeIndicator::higher_order: eta_tau = rho*(u, z)(u_r+1 - u) + J_T(u_r+1(T) - u(T)).
 // Heat with u = (x^2 - x)(y^2 - y)(-t/4): Q2 in space, linear in t, so dG(1) (u_r+1)
 // is exact and dG(0) (u) is not; with q = p and b = 0 (no SUPG), the discrete adjoint
@@ -282,6 +286,9 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
   over_I.location = {0.5, 0., 1., 0.5};
   over_I.over_time = true;
   over_I.weight = 0.5;
+  const HigherOrderPrimal hi{basis_hi, U_hi};
+  std::vector<std::vector<Vector<double>>> Z_alone;
+  std::vector<Indicators<2>> alone;
   for (const auto &goals :
        std::vector<std::vector<GoalSpec>>{{at_T}, {over_I}, {at_T, over_I}})
   {
@@ -289,9 +296,15 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
     const auto Z = march_adjoint(space, mesh, basis, op, j, MarchOptions{});
     const double err_tau =
         evaluate_goal(j, mesh, basis_hi, U_hi) - evaluate_goal(j, mesh, basis, U);
-    const HigherOrderPrimal hi{basis_hi, U_hi};
+    MultithreadInfo::set_thread_limit(1); // (bit-identical comparison below)
     const auto ind = estimate(space, space, mesh, basis, U, Z, goals,
                               TimeIndicator::higher_order, &hi);
+    MultithreadInfo::set_thread_limit();
+    if (goals.size() == 1)
+    {
+      Z_alone.push_back(Z);
+      alone.push_back(ind);
+    }
     EXPECT_GT(std::abs(err_tau), 1e-5);
     EXPECT_NEAR(ind.eta_tau, err_tau, 1e-9 * std::abs(err_tau))
         << goals.size() << " goal(s)";
@@ -306,6 +319,15 @@ TEST(TimeIndicator, HigherOrderIsExactForPolynomialTemporalError)
       EXPECT_GT(std::abs(radau.eta_tau - err_tau), 1e-3 * std::abs(err_tau));
     }
   }
+  // both adjoints in one pass: each gets its estimate alone, bit for bit
+  MultithreadInfo::set_thread_limit(1);
+  const auto each = estimate_each(space, space, mesh, basis, U,
+                                  {{&Z_alone[0], {at_T}}, {&Z_alone[1], {over_I}}},
+                                  TimeIndicator::higher_order, &hi);
+  MultithreadInfo::set_thread_limit();
+  ASSERT_EQ(each.size(), 2u);
+  for (unsigned int i = 0; i < 2; ++i)
+    expect_indicators_near(alone[i], each[i], 0.);
   EXPECT_THROW(
       estimate(space, space, mesh, basis, U, U, {at_T}, TimeIndicator::higher_order),
       std::invalid_argument);
@@ -638,6 +660,55 @@ TEST(Estimator, ThreadCountDoesNotChangeTheIndicators)
   for (const auto &c : b.eta_h_cell)
     cells += c[0] + c[1];
   EXPECT_NEAR(cells, b.eta_h_total(), tol);
+}
+
+// estimate_each runs several adjoints (one per goal) in one pass over the cells and
+// shares the work on u_h; each adjoint's indicators must be estimate()'s for it alone,
+// bit for bit (on one thread, so that FEValues' reuse between consecutive cells sees
+// the same cells). Moving hump (hanging nodes, SUPG): its two point goals at T and a
+// mean over I, both space forms, with and without the conforming weights.
+TEST(Estimator, EachAdjointInOnePassIsItsEstimateAlone)
+{
+  const HumpProblem hump(1);
+  GoalSpec over_I;
+  over_I.name = "mean_I";
+  over_I.kind = "mean";
+  over_I.location = {0.5, 0., 1., 0.5};
+  over_I.over_time = true;
+  const std::vector<GoalSpec> goals = {unweighted(hump.goals[0]), unweighted(hump.goals[1]),
+                                       over_I};
+  SlabOperator<2> opq(hump.adjoint, hump.basis, SlabSolverOptions::direct(true));
+  std::vector<std::vector<Vector<double>>> Z;
+  std::vector<AdjointOf> each;
+  for (const auto &g : goals)
+    Z.push_back(march_adjoint(hump.adjoint, hump.mesh, hump.basis, opq,
+                              assemble_goal_vectors(hump.adjoint, {g}), MarchOptions{}));
+  for (std::size_t i = 0; i < goals.size(); ++i)
+    each.push_back({&Z[i], {goals[i]}});
+  MultithreadInfo::set_thread_limit(1);
+  for (const auto form : {SpaceIndicator::average, SpaceIndicator::primal_residual})
+    for (const bool conforming : {true, false})
+    {
+      const auto parts =
+          estimate_each(hump.primal, hump.adjoint, hump.mesh, hump.basis, hump.U, each,
+                        TimeIndicator::average, nullptr, form, {}, conforming);
+      ASSERT_EQ(parts.size(), goals.size());
+      for (std::size_t i = 0; i < goals.size(); ++i)
+      {
+        const auto alone =
+            estimate(hump.primal, hump.adjoint, hump.mesh, hump.basis, hump.U, Z[i],
+                     {goals[i]}, TimeIndicator::average, nullptr, form, {}, conforming);
+        SCOPED_TRACE(goals[i].name + (form == SpaceIndicator::average ? " average" : " primal") +
+                     (conforming ? " conforming" : ""));
+        expect_indicators_near(alone, parts[i], 0.);
+        EXPECT_EQ(alone.eta_h_split_rest, parts[i].eta_h_split_rest);
+        EXPECT_EQ(alone.eta_h_data, parts[i].eta_h_data);
+        EXPECT_EQ(alone.eta_h_quad, parts[i].eta_h_quad);
+        EXPECT_EQ(alone.no_lift, parts[i].no_lift);
+        EXPECT_NE(alone.eta_h_total(), 0.);
+      }
+    }
+  MultithreadInfo::set_thread_limit();
 }
 
 // The estimator's short-vector helpers must give exactly deal.II's results (the

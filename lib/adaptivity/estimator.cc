@@ -58,11 +58,12 @@ void allreduce_chunks(std::vector<Indicators<dim>> &sums, Indicators<dim> &ind)
 }
 
 /// Runs assembly.add_cell over all cells on MultithreadInfo::n_threads() threads and
-/// returns the per-chunk sums in chunk order (the cell's own indicators go to `ind`).
+/// returns the per-chunk sums in chunk order, one per adjoint (the cell's own
+/// indicators go to ind[a]).
 template <int dim, class MakeAssembly>
-std::vector<Indicators<dim>>
+std::vector<std::vector<Indicators<dim>>>
 add_cells_in_chunks(const DoFHandler<dim> &dofs, unsigned int n_slabs,
-                    const MakeAssembly &make_assembly, Indicators<dim> &ind)
+                    const MakeAssembly &make_assembly, std::vector<Indicators<dim>> &ind)
 {
   // The cells are cut into chunks that depend only on their number; each chunk sums
   // its own contributions and the chunks are added in order, so the totals depend on
@@ -75,9 +76,11 @@ add_cells_in_chunks(const DoFHandler<dim> &dofs, unsigned int n_slabs,
     cells.push_back(cell);
   const std::size_t chunk = std::max<std::size_t>(64, (cells.size() + 255) / 256),
                     n_chunks = (cells.size() + chunk - 1) / chunk;
-  std::vector<Indicators<dim>> sums(n_chunks);
-  for (auto &s : sums)
-    s.eta_tau_slab.assign(n_slabs, 0.);
+  std::vector<std::vector<Indicators<dim>>> sums(n_chunks,
+                                                 std::vector<Indicators<dim>>(ind.size()));
+  for (auto &chunk_sums : sums)
+    for (auto &s : chunk_sums)
+      s.eta_tau_slab.assign(n_slabs, 0.);
   // Under MPI each rank takes every ranks-th chunk; the others stay zero, and the sum
   // over the ranks (allreduce_chunks) restores every chunk and cell exactly.
   const std::size_t ranks = mpi_ranks(), rank = mpi_rank(),
@@ -115,19 +118,26 @@ add_cells_in_chunks(const DoFHandler<dim> &dofs, unsigned int n_slabs,
   if (failure)
     std::rethrow_exception(failure);
   if (ranks > 1)
-    allreduce_chunks(sums, ind);
+    for (std::size_t a = 0; a < ind.size(); ++a)
+    {
+      std::vector<Indicators<dim>> of_a;
+      for (auto &chunk_sums : sums)
+        of_a.push_back(std::move(chunk_sums[a]));
+      allreduce_chunks(of_a, ind[a]);
+      for (std::size_t k = 0; k < sums.size(); ++k)
+        sums[k][a] = std::move(of_a[k]);
+    }
   return sums;
 }
 } // namespace
 
 template <int dim>
-Indicators<dim>
-estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
-         const TemporalBasis &basis, const std::vector<Vector<double>> &U,
-         const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
-         const TimeIndicator time_indicator, const HigherOrderPrimal *hi,
-         const SpaceIndicator space_indicator, const DataQuadrature &data,
-         const bool conforming_weights)
+std::vector<Indicators<dim>>
+estimate_each(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
+              const TemporalBasis &basis, const std::vector<Vector<double>> &U,
+              const std::vector<AdjointOf> &adjoints, const TimeIndicator time_indicator,
+              const HigherOrderPrimal *hi, const SpaceIndicator space_indicator,
+              const DataQuadrature &data, const bool conforming_weights)
 {
   if ((time_indicator == TimeIndicator::higher_order) != (hi != nullptr))
     throw std::invalid_argument("estimate: the higher_order time indicator needs the "
@@ -136,10 +146,22 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
     throw std::invalid_argument(
         "estimate: the higher-order primal must be dG(r+1) on the "
         "same slabs");
-  Vector<double> zT, u0(primal.n_dofs());
-  if (std::any_of(goals.begin(), goals.end(),
-                  [](const GoalSpec &g) { return !g.over_time; }))
-    zT = end_time_representer(adjoint, goals);
+  // per adjoint: z(T^+) (end-time goals) and the hanging-node defects
+  std::vector<Vector<double>> zT(adjoints.size());
+  std::vector<HangingDefect<dim>> hanging;
+  hanging.reserve(adjoints.size());
+  for (std::size_t a = 0; a < adjoints.size(); ++a)
+  {
+    const auto &goals = adjoints[a].goals;
+    if (std::any_of(goals.begin(), goals.end(),
+                    [](const GoalSpec &g) { return !g.over_time; }))
+      zT[a] = end_time_representer(adjoint, goals);
+    if (conforming_weights)
+      hanging.emplace_back(primal, adjoint, *adjoints[a].Z, basis.n_dofs());
+    else
+      hanging.emplace_back(basis.n_dofs());
+  }
+  Vector<double> u0(primal.n_dofs());
   {
     const ScalarFunctionFromFunctionObject<dim> f0(
         [&](const Point<dim> &x) { return primal.scene.initial_value(x); });
@@ -163,43 +185,66 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
       u0[i] = value;
   }
   const auto &tria = primal.dof_handler().get_triangulation();
-  Indicators<dim> ind;
-  ind.eta_h_cell.assign(tria.n_active_cells(), std::array<double, dim>{});
-  ind.eta_tau_cell.assign(tria.n_active_cells(), 0.);
-  ind.eta_tau_slab.assign(mesh.n_slabs(), 0.);
+  std::vector<Indicators<dim>> ind(adjoints.size());
+  std::vector<AssemblyAdjoint<dim>> in;
+  for (std::size_t a = 0; a < adjoints.size(); ++a)
+  {
+    ind[a].eta_h_cell.assign(tria.n_active_cells(), std::array<double, dim>{});
+    ind[a].eta_tau_cell.assign(tria.n_active_cells(), 0.);
+    ind[a].eta_tau_slab.assign(mesh.n_slabs(), 0.);
+    in.push_back({*adjoints[a].Z, adjoints[a].goals, zT[a], hanging[a]});
+  }
 
-  const HangingDefect<dim> hanging =
-      conforming_weights ? HangingDefect<dim>(primal, adjoint, Z, basis.n_dofs())
-                         : HangingDefect<dim>(basis.n_dofs());
   const auto sums = add_cells_in_chunks(
       primal.dof_handler(), mesh.n_slabs(),
       [&]()
       {
-        return IndicatorAssembly<dim>(primal, adjoint, mesh, basis, U, Z, goals,
-                                      time_indicator, hi, space_indicator, zT, u0,
-                                      data, hanging);
+        return IndicatorAssembly<dim>(primal, adjoint, mesh, basis, U, in, time_indicator,
+                                      hi, space_indicator, u0, data);
       },
       ind);
-  for (const auto &s : sums)
-  {
-    for (unsigned int i = 0; i < dim; ++i)
-      ind.eta_h[i] += s.eta_h[i];
-    for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
-      ind.eta_tau_slab[n] += s.eta_tau_slab[n];
-    ind.eta_tau += s.eta_tau;
-    ind.eta_tau_rho += s.eta_tau_rho;
-    ind.eta_tau_rhostar += s.eta_tau_rhostar;
-    ind.eta_h_rho += s.eta_h_rho;
-    ind.eta_h_rhostar += s.eta_h_rhostar;
-    ind.eta_h_supg += s.eta_h_supg;
-    ind.eta_h_split_rest += s.eta_h_split_rest;
-    ind.eta_h_data += s.eta_h_data;
-    ind.eta_h_quad += s.eta_h_quad;
-    ind.no_lift += s.no_lift;
-  }
+  for (std::size_t a = 0; a < adjoints.size(); ++a)
+    for (const auto &chunk_sums : sums)
+    {
+      const Indicators<dim> &s = chunk_sums[a];
+      for (unsigned int i = 0; i < dim; ++i)
+        ind[a].eta_h[i] += s.eta_h[i];
+      for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+        ind[a].eta_tau_slab[n] += s.eta_tau_slab[n];
+      ind[a].eta_tau += s.eta_tau;
+      ind[a].eta_tau_rho += s.eta_tau_rho;
+      ind[a].eta_tau_rhostar += s.eta_tau_rhostar;
+      ind[a].eta_h_rho += s.eta_h_rho;
+      ind[a].eta_h_rhostar += s.eta_h_rhostar;
+      ind[a].eta_h_supg += s.eta_h_supg;
+      ind[a].eta_h_split_rest += s.eta_h_split_rest;
+      ind[a].eta_h_data += s.eta_h_data;
+      ind[a].eta_h_quad += s.eta_h_quad;
+      ind[a].no_lift += s.no_lift;
+    }
   return ind;
 }
 
+template <int dim>
+Indicators<dim>
+estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
+         const TemporalBasis &basis, const std::vector<Vector<double>> &U,
+         const std::vector<Vector<double>> &Z, const std::vector<GoalSpec> &goals,
+         const TimeIndicator time_indicator, const HigherOrderPrimal *hi,
+         const SpaceIndicator space_indicator, const DataQuadrature &data,
+         const bool conforming_weights)
+{
+  return std::move(estimate_each(primal, adjoint, mesh, basis, U, {{&Z, goals}},
+                                 time_indicator, hi, space_indicator, data,
+                                 conforming_weights)
+                       .front());
+}
+
+template std::vector<Indicators<2>>
+estimate_each<2>(const Space<2> &, const Space<2> &, const TimeMesh &, const TemporalBasis &,
+                 const std::vector<Vector<double>> &, const std::vector<AdjointOf> &,
+                 TimeIndicator, const HigherOrderPrimal *, SpaceIndicator,
+                 const DataQuadrature &, bool);
 template Indicators<2> estimate<2>(const Space<2> &, const Space<2> &, const TimeMesh &,
                                    const TemporalBasis &,
                                    const std::vector<Vector<double>> &,

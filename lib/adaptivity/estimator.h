@@ -150,6 +150,27 @@ estimate(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &me
          SpaceIndicator space_indicator = SpaceIndicator::average,
          const DataQuadrature &data = {}, bool conforming_weights = true);
 
+/// One adjoint of estimate_each(): its slab vectors (interleaved) and the goal(s) it
+/// answers.
+struct AdjointOf
+{
+  const std::vector<dealii::Vector<double>> *Z;
+  std::vector<GoalSpec> goals;
+};
+
+/// estimate() for several adjoints on one primal at once (one estimate per goal): the
+/// work on u_h alone is shared, each adjoint's indicators are estimate()'s for it alone,
+/// bit for bit.
+template <int dim>
+std::vector<Indicators<dim>>
+estimate_each(const Space<dim> &primal, const Space<dim> &adjoint, const TimeMesh &mesh,
+              const TemporalBasis &basis, const std::vector<dealii::Vector<double>> &U,
+              const std::vector<AdjointOf> &adjoints,
+              TimeIndicator time_indicator = TimeIndicator::average,
+              const HigherOrderPrimal *higher_order = nullptr,
+              SpaceIndicator space_indicator = SpaceIndicator::average,
+              const DataQuadrature &data = {}, bool conforming_weights = true);
+
 /// The localized forms summed over all cells, one value per slab, for given global
 /// functions (for the localization tests). u in `primal`'s space; the weights w, y, v
 /// and the adjoint-slot function zt in `other`'s space (same mesh, degree <= W's).

@@ -12,9 +12,23 @@
 
 namespace anisodwr
 {
+/// One adjoint of the assembly: its slab vectors Z (interleaved), the goals it answers,
+/// z(T^+) = M^{-1} j_T (empty without an end-time goal) and its hanging-node defects.
+template <int dim> struct AssemblyAdjoint
+{
+  const std::vector<dealii::Vector<double>> &Z;
+  const std::vector<GoalSpec> &goals;
+  const dealii::Vector<double> &zT;
+  const HangingDefect<dim> &hanging;
+};
+
 /// The indicators of estimate(), assembled cell by cell: the operators, the temporal
 /// reconstruction and the goal parts, set up once, and the buffers reused over cells
-/// and slabs (the per-slab work allocates nothing once sized).
+/// and slabs (the per-slab work allocates nothing once sized). With several adjoints
+/// (one estimate per goal) the work on u_h alone -- the cell's FEValues and matrices,
+/// rho(u) and S(u), the lifts I_2h,i u - u, E u - u -- is done once for all of them;
+/// each adjoint's terms are formed as if it were alone, so its indicators are the ones
+/// a separate assembly gives, bit for bit.
 template <int dim> class IndicatorAssembly
 {
 public:
@@ -23,42 +37,84 @@ public:
   IndicatorAssembly(const Space<dim> &primal, const Space<dim> &adjoint,
                     const TimeMesh &mesh, const TemporalBasis &basis,
                     const std::vector<dealii::Vector<double>> &U,
-                    const std::vector<dealii::Vector<double>> &Z,
-                    const std::vector<GoalSpec> &goals, TimeIndicator time_indicator,
-                    const HigherOrderPrimal *hi, SpaceIndicator space_indicator,
-                    const dealii::Vector<double> &zT, const dealii::Vector<double> &u0,
-                    const DataQuadrature &data_rule,
-                    const HangingDefect<dim> &hanging);
+                    const std::vector<AssemblyAdjoint<dim>> &adjoints,
+                    TimeIndicator time_indicator, const HigherOrderPrimal *hi,
+                    SpaceIndicator space_indicator, const dealii::Vector<double> &u0,
+                    const DataQuadrature &data_rule);
 
-  /// Adds the cell's eta_h,i and eta_tau (all slabs) to cells.eta_h_cell and
-  /// cells.eta_tau_cell, and its contributions to the sums (per slab, per direction,
-  /// the parts) to `sums`.
-  void add_cell(const cell_iterator &cell, Indicators<dim> &cells, Indicators<dim> &sums);
+  /// Adds the cell's eta_h,i and eta_tau (all slabs) to cells[a].eta_h_cell and
+  /// cells[a].eta_tau_cell, and its contributions to the sums (per slab, per direction,
+  /// the parts) to sums[a], for each adjoint a.
+  void add_cell(const cell_iterator &cell, std::vector<Indicators<dim>> &cells,
+                std::vector<Indicators<dim>> &sums);
 
 private:
-  /// The slab's terms for the cell; supg_part, quad_part and lift_size accumulate over
+  /// the cell's constrained DoFs (local index, slot), grouped by the direction they
+  /// are charged to; per group the W-local defect at each temporal node (I_h z = R_h z
+  /// minus the groups' defects)
+  struct DefectGroup
+  {
+    unsigned int direction = 0;
+    std::vector<std::pair<unsigned int, unsigned int>> slots;
+    std::vector<dealii::Vector<double>> w;
+  };
+  /// An adjoint's part of the assembly: its data, its weights on the cell and slab and
+  /// the functionals formed from them.
+  struct Weights
+  {
+    Weights(const AssemblyAdjoint<dim> &in, const Space<dim> &primal,
+            const dealii::FE_Q<dim> &fe_w, unsigned int n_nodes, unsigned int n_w);
+    const std::vector<dealii::Vector<double>> &Z;
+    const dealii::Vector<double> &zT;
+    const HangingDefect<dim> &hanging;
+    const LocalGoal<dim> goal_t, goal_T;
+    std::vector<std::pair<unsigned int, unsigned int>> cell_slots;
+    std::vector<DefectGroup> groups; // the first n_groups are the cell's
+    unsigned int n_groups = 0;
+    /// W-local z at the temporal nodes of the slab; those of slab n+1 (gathered for
+    /// z(t_n^+), reused by slab n+1); R_h or R_i applied to z_nodes; z(t_n^+)
+    std::vector<dealii::Vector<double>> z_nodes, z_nodes_next, Rz_nodes;
+    dealii::Vector<double> z_next;
+    /// z and R_h z on the slab
+    SlabFunction z, Rh_z;
+    /// A'(.)(R_h z) and S'(.)(R_h z), A'(.)(z) (the adjoint residual's forms); J'(.)
+    /// over I
+    SlabFunctional adjoint_form_Rhz, supg_derivative_Rhz, adjoint_form_z, goal_derivative;
+    /// the cell's goal vectors: the part over I and the part at T
+    dealii::Vector<double> goal_vector_I, goal_vector_T;
+    /// S(u)(R_h z) and D(R_h z) on the cell, summed over the slabs
+    double supg_part = 0, quad_part = 0;
+  };
+
+  /// The slab's terms on u_h alone (shared by the adjoints); lift_size accumulates over
   /// the slabs.
-  void add_slab(unsigned int n, unsigned int c, Indicators<dim> &cells,
-                Indicators<dim> &ind, double &supg_part, double &quad_part,
-                std::array<double, dim> &lift_size);
-  /// W-local z and u at the temporal nodes of slab n, z(t_n^+) and u(t_{n-1}^-).
-  void gather_slab(unsigned int n);
-  /// eta_h,i on slab n; adds ||I_2h,i u - u||^2 over the slab to lift_size and the
-  /// primal and adjoint halves to ind.eta_h_rho, ind.eta_h_rhostar; sets half_rho to
-  /// the primal half 1/2 rho(u)(z - R_i z).
-  double directional_indicator(unsigned int i, unsigned int n, double tau, bool last,
-                               double &lift_size, double &half_rho, Indicators<dim> &ind);
-  /// recon_error_z = E z - z (outside value z(t_n^+)), recon_error_u = E u - u (outside
-  /// value u(t_{n-1}^-)).
-  void reconstruction_errors(double tau);
+  void add_primal_slab(unsigned int n, std::array<double, dim> &lift_size);
+  /// The adjoint's terms of slab n for the cell (after add_primal_slab).
+  void add_slab(Weights &a, unsigned int n, unsigned int c, Indicators<dim> &cells,
+                Indicators<dim> &ind);
+  /// W-local u at the temporal nodes of slab n and u(t_{n-1}^-).
+  void gather_primal(unsigned int n);
+  /// W-local z at the temporal nodes of slab n and z(t_n^+).
+  void gather_adjoint(Weights &a, unsigned int n);
+  /// I_2h,i u - u on slab n for each direction with a lift; adds its square norm over
+  /// the slab to lift_size.
+  void lift_errors(unsigned int n, double tau, std::array<double, dim> &lift_size);
+  /// eta_h,i on slab n; adds the primal and adjoint halves to ind.eta_h_rho,
+  /// ind.eta_h_rhostar; sets half_rho to the primal half 1/2 rho(u)(z - R_i z).
+  double directional_indicator(Weights &a, unsigned int i, double tau, bool last,
+                               double &half_rho, Indicators<dim> &ind);
+  /// recon_error_z = E z - z (outside value z(t_n^+)).
+  void adjoint_reconstruction_error(const Weights &a, double tau);
+  /// recon_error_u = E u - u (outside value u(t_{n-1}^-)).
+  void primal_reconstruction_error(double tau);
   /// recon_error_u = u_r+1 - u (values and derivatives at the Gauss points, the jump at
-  /// t_{n-1}); returns J_T(u_r+1(T) - u(T)) on the last slab, else 0.
-  double higher_order_errors(unsigned int n, double tau, bool last);
+  /// t_{n-1}); on the last slab hi_end = u_r+1(T) - u(T).
+  void higher_order_errors(unsigned int n, double tau, bool last);
 
   const Space<dim> &primal, &adjoint;
   const TimeMesh &mesh;
   const TemporalBasis &basis;
-  const std::vector<dealii::Vector<double>> &U, &Z;
+  const std::vector<dealii::Vector<double>> &U;
   const TimeIndicator time_indicator;
   const HigherOrderPrimal *const hi;
   const SpaceIndicator space_indicator;
@@ -70,67 +126,52 @@ private:
   const dealii::FullMatrix<double> from_primal, from_adjoint;
   CellKernel<dim> kernel;
   const TemporalReconstruction recon;
-  const LocalGoal<dim> goal_t, goal_T;
   /// slabs, temporal nodes of dG(r) per slab, W's DoFs per cell
   const unsigned int N, n_nodes, n_w;
-  /// z(T^+) = M^{-1} j_T (empty without an end-time goal) and the interpolant of u_0
-  /// (E_tau u at t_0), shared by the assemblies of all threads
-  const dealii::Vector<double> &zT, &u0;
+  /// the interpolant of u_0 (E_tau u at t_0), shared by the assemblies of all threads
+  const dealii::Vector<double> &u0;
   /// E_tau at the temporal Gauss points (values [0] and derivatives [1]): the same
   /// combinations for every cell and slab
   std::vector<std::array<TimeCombination, 2>> recon_z, recon_u;
   /// the dG(r+1) basis at the temporal Gauss points (values, derivatives per unit s)
   const unsigned int n_nodes_hi;
   std::vector<std::vector<double>> hi_val, hi_der;
+  std::vector<Weights> weights;
 
   /// Rz_nodes = R_h z at the temporal nodes of slab n, the conforming I_h z on cells
   /// with hanging nodes (the groups' defects subtracted)
-  void restrict_weights(unsigned int n);
+  void restrict_weights(Weights &a, unsigned int n);
   /// the W-local defects of the cell's groups on slab n (n_groups > 0)
-  void gather_defects(unsigned int n);
+  void gather_defects(Weights &a, unsigned int n);
   /// adds rho(u)(defect) of each group to the cell's eta_h in the group's direction
   /// (half of it in the average form) and to the sums; returns the sum of rho(u)(defect)
-  double add_defect_indicators(double tau, unsigned int c, Indicators<dim> &cells,
-                               Indicators<dim> &ind);
+  double add_defect_indicators(Weights &a, double tau, unsigned int c,
+                               Indicators<dim> &cells, Indicators<dim> &ind);
 
-  const HangingDefect<dim> &hanging;
-  /// the cell's constrained DoFs (local index, slot), grouped by the direction they
-  /// are charged to; per group the W-local defect at each temporal node (I_h z = R_h z
-  /// minus the groups' defects)
-  struct DefectGroup
-  {
-    unsigned int direction = 0;
-    std::vector<std::pair<unsigned int, unsigned int>> slots;
-    std::vector<dealii::Vector<double>> w;
-  };
-  std::vector<std::pair<unsigned int, unsigned int>> cell_slots;
-  std::vector<DefectGroup> groups; // the first n_groups are the cell's
-  unsigned int n_groups = 0;
   dealii::Vector<double> defect_p;
   SlabFunction defect;
   /// the dG(r+1) primal's W-local vectors at its temporal nodes (higher_order)
   std::vector<dealii::Vector<double>> u_hi_nodes;
   dealii::Vector<double> e_prev;
   std::vector<dealii::types::global_dof_index> idx_q;
-  /// the slab's functionals on the cell: rho(u)(.) and S(u)(.) of u_h; A'(.)(R_h z) and
-  /// S'(.)(R_h z), A'(.)(z) (the adjoint residual's forms); J'(.) over I
-  SlabFunctional rho_u, supg_u, load_error, adjoint_form_Rhz, supg_derivative_Rhz,
-      adjoint_form_z, goal_derivative;
-  std::array<SlabFunctional, dim> data; // the Dirichlet data's share, per direction
-  /// W-local z, u and I_2h,i u - u at the temporal nodes of the slab
-  std::vector<dealii::Vector<double>> z_nodes, u_nodes, lift_nodes;
-  /// z's nodal vectors of slab n+1 (gathered for z(t_n^+), reused by slab n+1) and
+  /// the slab's functionals of u_h on the cell: rho(u)(.), S(u)(.), the data's
+  /// quadrature error D(.) and the Dirichlet data's share (per direction)
+  SlabFunctional rho_u, supg_u, load_error;
+  std::array<SlabFunctional, dim> data;
+  bool has_data = false;
+  /// W-local u at the temporal nodes of the slab; per direction I_2h,i u - u there
+  std::vector<dealii::Vector<double>> u_nodes;
+  std::array<std::vector<dealii::Vector<double>>, dim> lift_nodes;
   /// each direction's I_2h,i u - u at the last node of slab n (lift_error(t_n^-) of slab
   /// n+1)
-  std::vector<dealii::Vector<double>> z_nodes_next, lift_error_last;
-  std::vector<dealii::Vector<double>> Rz_nodes; // R_h or R_i applied to z_nodes
-  /// z(t_n^+), u(t_{n-1}^-); scratch vectors (work_T: a value at the slab's end)
-  dealii::Vector<double> z_next, u_prev, tmp, work_T, work_z, work_u;
-  /// z and u on the slab; R_h z, R_i z and z - R z (R_h or R_i); I_2h,i u - u (the
+  std::vector<dealii::Vector<double>> lift_error_last;
+  /// u(t_{n-1}^-); u_r+1(T) - u(T) (higher_order, last slab); scratch vectors (work_T:
+  /// a value at the slab's end)
+  dealii::Vector<double> u_prev, hi_end, tmp, work_T, work_z, work_u;
+  /// u on the slab; R_i z and z - R z (R_h or R_i); per direction I_2h,i u - u (the
   /// lift's error); E z - z and E u - u (the temporal reconstruction's errors)
-  SlabFunction z, u, Rh_z, Ri_z, z_minus_Rz, lift_error, recon_error_z, recon_error_u;
+  SlabFunction u, Ri_z, z_minus_Rz, recon_error_z, recon_error_u;
+  std::array<SlabFunction, dim> lift_error;
   std::vector<LocalMap> lift;
-  /// the cell's goal vectors: the part over I and the part at T
-  dealii::Vector<double> goal_vector_I, goal_vector_T;
 };
 } // namespace anisodwr

@@ -112,7 +112,8 @@ std::vector<Entry> adaptivity_entries()
        "goal's own eta_tau h and I_eff (loops.csv: eta_<goal>, I_eff_<goal>), so that "
        "cancellation between goals in the combined estimate is visible. The combined "
        "indicators are then the weighted sum of the goals' own; costs one adjoint solve "
-       "and estimate per goal instead of one in all."},
+       "per goal and each goal's own terms in the estimator (one pass over the cells: "
+       "the terms of u_h alone are formed once for all goals)."},
       {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
        "March the adjoint(s) in a second thread while the primal marches (with "
        "goal.weights = auto and one adjoint for the weighted goal: assemble and "

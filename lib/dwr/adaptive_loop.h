@@ -103,11 +103,6 @@ private:
   void estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
                      const Space<2> &adjoint, const std::vector<Vector<double>> &U,
                      const HigherOrderPrimal *hi, AdjointMarch adj);
-  /// The indicators of one goal alone (weight 1) from its adjoint Z.
-  Indicators<2> goal_estimate(const Space<2> &primal, const Space<2> &adjoint,
-                              const std::vector<Vector<double>> &U,
-                              const std::vector<Vector<double>> &Z, const GoalSpec &goal,
-                              const HigherOrderPrimal *hi) const;
   /// by_goal: see estimate_from.
   void estimate_by_goal(LoopRow &row, Indicators<2> &ind, const Space<2> &primal,
                         const Space<2> &adjoint, std::vector<std::vector<Vector<double>>> Z,

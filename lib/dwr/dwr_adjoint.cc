@@ -126,10 +126,18 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   double u_max = 0;
   for (const auto &u : U)
     u_max = std::max(u_max, u.linfty_norm());
+  // each goal with its own adjoint, in one pass over the cells (the work on u_h shared)
+  std::vector<AdjointOf> each;
+  for (std::size_t i = 0; i < goals.size(); ++i)
+    each.push_back({&Z[i], {unweighted(goals[i])}});
+  const std::vector<Indicators<2>> parts =
+      estimate_each(primal, adjoint, mesh, basis, U, each, prm.adaptivity.time_indicator,
+                    hi, prm.adaptivity.space_indicator, data_quadrature(prm.adaptivity),
+                    prm.adaptivity.conforming_weights);
+  Z.clear();
   for (std::size_t i = 0; i < goals.size(); ++i)
   {
-    const auto part = goal_estimate(primal, adjoint, U, Z[i], goals[i], hi);
-    Z[i] = {};
+    const Indicators<2> &part = parts[i];
     add_goal_estimate(row, part);
     if (estimate_weights)
     {
@@ -144,17 +152,6 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   if (estimate_weights)
     weigh_goals(row);
   row.t_estimate = t.wall_time();
-}
-
-Indicators<2> AdaptiveLoop::goal_estimate(const Space<2> &primal, const Space<2> &adjoint,
-                                          const std::vector<Vector<double>> &U,
-                                          const std::vector<Vector<double>> &Z,
-                                          const GoalSpec &goal,
-                                          const HigherOrderPrimal *hi) const
-{
-  return estimate(primal, adjoint, mesh, basis, U, Z, {unweighted(goal)},
-                  prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator,
-                  data_quadrature(prm.adaptivity), prm.adaptivity.conforming_weights);
 }
 
 void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
