@@ -162,7 +162,11 @@ void IndicatorAssembly<dim>::add_primal_slab(unsigned int n,
   if (hi)
     higher_order_errors(n, tau, n + 1 == N);
   else
-    primal_reconstruction_error(tau);
+  {
+    reconstruction_error(recon_u, u_prev, u_nodes, u, tau, work_u, recon_error_u);
+    sv::copy(recon_error_u.plus, u_prev); // E u(t_{n-1}) - u(t_{n-1}^+)
+    sv::subtract(recon_error_u.plus, u.plus);
+  }
 }
 
 template <int dim>
@@ -213,7 +217,8 @@ void IndicatorAssembly<dim>::add_slab(Weights &a, unsigned int n, unsigned int c
       ind.eta_h_data += eta;
     }
 
-  adjoint_reconstruction_error(a, tau);
+  reconstruction_error(recon_z, a.z_next, a.z_nodes, a.z, tau, work_z, recon_error_z);
+  sv::zero(recon_error_z.plus, n_w); // E z(t_{n-1}) = z(t_{n-1}^+)
   // J_T(E u - u) at T: 0 for the Radau reconstruction (E u - u vanishes at t_n)
   const double end_part =
       hi && last && a.goal_vector_T.size() ? a.goal_vector_T * hi_end : 0.;
@@ -368,60 +373,34 @@ double IndicatorAssembly<dim>::directional_indicator(Weights &a, unsigned int i,
 }
 
 template <int dim>
-void IndicatorAssembly<dim>::adjoint_reconstruction_error(const Weights &a, double tau)
+void IndicatorAssembly<dim>::reconstruction_error(
+    const std::vector<std::array<TimeCombination, 2>> &combination,
+    const Vector<double> &outside, const std::vector<Vector<double>> &nodes,
+    const SlabFunction &f, double tau, Vector<double> &work, SlabFunction &error) const
 {
-  recon_error_z.val.resize(kernel.n_points());
-  recon_error_z.dt.resize(kernel.n_points());
+  error.val.resize(kernel.n_points());
+  error.dt.resize(kernel.n_points());
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
     for (bool deriv : {false, true})
     {
-      const TimeCombination &c = recon_z[m][deriv];
-      sv::zero(work_z);
-      sv::add(work_z, c.outside, a.z_next);
+      const TimeCombination &c = combination[m][deriv];
+      sv::zero(work);
+      sv::add(work, c.outside, outside);
       for (unsigned int k = 0; k < n_nodes; ++k)
-        sv::add(work_z, c.slab[k], a.z_nodes[k]);
+        sv::add(work, c.slab[k], nodes[k]);
       if (deriv)
       {
         // (deal.II's operator/= multiplies by the reciprocal)
-        sv::scale(work_z, 1. / tau);
-        sv::subtract(work_z, a.z.dt[m]);
-        sv::copy(recon_error_z.dt[m], work_z);
+        sv::scale(work, 1. / tau);
+        sv::subtract(work, f.dt[m]);
+        sv::copy(error.dt[m], work);
       }
       else
       {
-        sv::subtract(work_z, a.z.val[m]);
-        sv::copy(recon_error_z.val[m], work_z);
+        sv::subtract(work, f.val[m]);
+        sv::copy(error.val[m], work);
       }
     }
-  sv::zero(recon_error_z.plus, n_w); // E z(t_{n-1}) = z(t_{n-1}^+)
-}
-
-template <int dim> void IndicatorAssembly<dim>::primal_reconstruction_error(double tau)
-{
-  recon_error_u.val.resize(kernel.n_points());
-  recon_error_u.dt.resize(kernel.n_points());
-  for (unsigned int m = 0; m < kernel.n_points(); ++m)
-    for (bool deriv : {false, true})
-    {
-      const TimeCombination &c = recon_u[m][deriv];
-      sv::zero(work_u);
-      sv::add(work_u, c.outside, u_prev);
-      for (unsigned int k = 0; k < n_nodes; ++k)
-        sv::add(work_u, c.slab[k], u_nodes[k]);
-      if (deriv)
-      {
-        sv::scale(work_u, 1. / tau);
-        sv::subtract(work_u, u.dt[m]);
-        sv::copy(recon_error_u.dt[m], work_u);
-      }
-      else
-      {
-        sv::subtract(work_u, u.val[m]);
-        sv::copy(recon_error_u.val[m], work_u);
-      }
-    }
-  sv::copy(recon_error_u.plus, u_prev); // E u(t_{n-1}) - u(t_{n-1}^+)
-  sv::subtract(recon_error_u.plus, u.plus);
 }
 
 template <int dim>

@@ -103,10 +103,14 @@ private:
   /// ind.eta_h_rhostar; sets half_rho to the primal half 1/2 rho(u)(z - R_i z).
   double directional_indicator(Weights &a, unsigned int i, double tau, bool last,
                                double &half_rho, Indicators<dim> &ind);
-  /// recon_error_z = E z - z (outside value z(t_n^+)).
-  void adjoint_reconstruction_error(const Weights &a, double tau);
-  /// recon_error_u = E u - u (outside value u(t_{n-1}^-)).
-  void primal_reconstruction_error(double tau);
+  /// error = E f - f at the temporal Gauss points (values and derivatives) for f on
+  /// the slab given by its nodal vectors, E by `combination` with the value outside the
+  /// slab (z(t_n^+) for z, u(t_{n-1}^-) for u); `work` is scratch.
+  void reconstruction_error(const std::vector<std::array<TimeCombination, 2>> &combination,
+                            const dealii::Vector<double> &outside,
+                            const std::vector<dealii::Vector<double>> &nodes,
+                            const SlabFunction &f, double tau, dealii::Vector<double> &work,
+                            SlabFunction &error) const;
   /// recon_error_u = u_r+1 - u (values and derivatives at the Gauss points, the jump at
   /// t_{n-1}); on the last slab hi_end = u_r+1(T) - u(T).
   void higher_order_errors(unsigned int n, double tau, bool last);
