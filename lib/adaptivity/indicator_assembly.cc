@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace anisodwr
 {
@@ -49,9 +50,17 @@ IndicatorAssembly<dim>::IndicatorAssembly(
 {
   for (auto &nodes : lift_nodes)
     nodes.resize(n_nodes);
+  // add_cell groups the cell's hanging slots once, by the first adjoint's defects
+  if (adjoints.empty())
+    throw std::invalid_argument("IndicatorAssembly: no adjoint");
   weights.reserve(adjoints.size());
   for (const auto &a : adjoints)
+  {
+    if (a.hanging.n_slots() != adjoints.front().hanging.n_slots())
+      throw std::logic_error("IndicatorAssembly: the adjoints' hanging-node defects "
+                             "are not on the same constrained DoFs");
     weights.emplace_back(a, primal, fe_w, n_nodes, n_w);
+  }
   for (unsigned int m = 0; m < kernel.n_points(); ++m)
     for (unsigned int d = 0; d < 2; ++d)
     {
@@ -75,26 +84,28 @@ void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell,
                                       std::vector<Indicators<dim>> &sums)
 {
   kernel.reinit(cell);
-  for (auto &a : weights)
+  // (the slots are the mesh's constrained DoFs: every adjoint's HangingDefect has them)
+  weights.front().hanging.cell_slots(kernel.dof_indices(), cell_slots);
+  n_groups = 0;
+  for (const auto &[j, slot] : cell_slots)
   {
-    a.hanging.cell_slots(kernel.dof_indices(), a.cell_slots);
-    a.n_groups = 0;
-    for (const auto &[j, slot] : a.cell_slots)
+    const unsigned int dir = weights.front().hanging.direction(slot);
+    unsigned int g = 0;
+    while (g < n_groups && groups[g].direction != dir)
+      ++g;
+    if (g == n_groups)
     {
-      const unsigned int dir = a.hanging.direction(slot);
-      unsigned int g = 0;
-      while (g < a.n_groups && a.groups[g].direction != dir)
-        ++g;
-      if (g == a.n_groups)
+      if (groups.size() == n_groups)
       {
-        if (a.groups.size() == a.n_groups)
-          a.groups.emplace_back().w.assign(n_nodes, Vector<double>(n_w));
-        a.groups[g].direction = dir;
-        a.groups[g].slots.clear();
-        ++a.n_groups;
+        groups.emplace_back();
+        for (auto &a : weights)
+          a.defects.emplace_back(n_nodes, Vector<double>(n_w));
       }
-      a.groups[g].slots.emplace_back(j, slot);
+      groups[g].direction = dir;
+      groups[g].slots.clear();
+      ++n_groups;
     }
+    groups[g].slots.emplace_back(j, slot);
   }
   typename DoFHandler<dim>::active_cell_iterator cq(&tria, cell->level(), cell->index(),
                                                     &adjoint.dof_handler());
@@ -242,12 +253,12 @@ template <int dim> void IndicatorAssembly<dim>::restrict_weights(Weights &a, uns
   // nodes the conforming I_h z (adaptivity/hanging_defect.h)
   for (unsigned int k = 0; k < n_nodes; ++k)
     sv::vmult(a.Rz_nodes[k], ops.restriction(dim), a.z_nodes[k]);
-  if (!a.n_groups)
+  if (!n_groups)
     return;
   gather_defects(a, n);
-  for (unsigned int g = 0; g < a.n_groups; ++g)
+  for (unsigned int g = 0; g < n_groups; ++g)
     for (unsigned int k = 0; k < n_nodes; ++k)
-      sv::subtract(a.Rz_nodes[k], a.groups[g].w[k]);
+      sv::subtract(a.Rz_nodes[k], a.defects[g][k]);
 }
 
 template <int dim>
@@ -258,13 +269,13 @@ double IndicatorAssembly<dim>::add_defect_indicators(Weights &a, double tau, uns
   // the hanging-node defects' part of rho(u)(z - I_h z), in the direction along their
   // coarse face
   double sum = 0;
-  for (unsigned int g = 0; g < a.n_groups; ++g)
+  for (unsigned int g = 0; g < n_groups; ++g)
   {
-    slab_function(kernel, basis, tau, a.groups[g].w, defect);
+    slab_function(kernel, basis, tau, a.defects[g], defect);
     const double d = apply(rho_u, defect, false),
                  eta = space_indicator == SpaceIndicator::primal_residual ? d : d / 2;
-    cells.eta_h_cell[c][a.groups[g].direction] += eta;
-    ind.eta_h[a.groups[g].direction] += eta;
+    cells.eta_h_cell[c][groups[g].direction] += eta;
+    ind.eta_h[groups[g].direction] += eta;
     ind.eta_h_rho += d / 2;
     sum += d;
   }
@@ -273,13 +284,13 @@ double IndicatorAssembly<dim>::add_defect_indicators(Weights &a, double tau, uns
 
 template <int dim> void IndicatorAssembly<dim>::gather_defects(Weights &a, unsigned int n)
 {
-  for (unsigned int g = 0; g < a.n_groups; ++g)
+  for (unsigned int g = 0; g < n_groups; ++g)
     for (unsigned int k = 0; k < n_nodes; ++k)
     {
       sv::zero(defect_p);
-      for (const auto &[j, slot] : a.groups[g].slots)
+      for (const auto &[j, slot] : groups[g].slots)
         defect_p[j] = a.hanging.value(n, slot, k);
-      sv::vmult(a.groups[g].w[k], from_primal, defect_p);
+      sv::vmult(a.defects[g][k], from_primal, defect_p);
     }
 }
 

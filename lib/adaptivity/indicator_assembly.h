@@ -50,13 +50,11 @@ public:
 
 private:
   /// the cell's constrained DoFs (local index, slot), grouped by the direction they
-  /// are charged to; per group the W-local defect at each temporal node (I_h z = R_h z
-  /// minus the groups' defects)
+  /// are charged to (the mesh's: the same for every adjoint's HangingDefect)
   struct DefectGroup
   {
     unsigned int direction = 0;
     std::vector<std::pair<unsigned int, unsigned int>> slots;
-    std::vector<dealii::Vector<double>> w;
   };
   /// An adjoint's part of the assembly: its data, its weights on the cell and slab and
   /// the functionals formed from them.
@@ -68,9 +66,9 @@ private:
     const dealii::Vector<double> &zT;
     const HangingDefect<dim> &hanging;
     const LocalGoal<dim> goal_t, goal_T;
-    std::vector<std::pair<unsigned int, unsigned int>> cell_slots;
-    std::vector<DefectGroup> groups; // the first n_groups are the cell's
-    unsigned int n_groups = 0;
+    /// per group of the cell the W-local defect at each temporal node (I_h z = R_h z
+    /// minus the groups' defects)
+    std::vector<std::vector<dealii::Vector<double>>> defects;
     /// W-local z at the temporal nodes of the slab; those of slab n+1 (gathered for
     /// z(t_n^+), reused by slab n+1); R_h or R_i applied to z_nodes; z(t_n^+)
     std::vector<dealii::Vector<double>> z_nodes, z_nodes_next, Rz_nodes;
@@ -152,6 +150,9 @@ private:
   double add_defect_indicators(Weights &a, double tau, unsigned int c,
                                Indicators<dim> &cells, Indicators<dim> &ind);
 
+  std::vector<std::pair<unsigned int, unsigned int>> cell_slots;
+  std::vector<DefectGroup> groups; // the first n_groups are the cell's
+  unsigned int n_groups = 0;
   dealii::Vector<double> defect_p;
   SlabFunction defect;
   /// the dG(r+1) primal's W-local vectors at its temporal nodes (higher_order)
