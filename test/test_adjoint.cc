@@ -9,6 +9,7 @@
 #include "study/options.h"
 
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -184,6 +185,54 @@ TEST(Mollifier, LargeCellsIntegrateLinearFunctionsExactly)
     for (unsigned int p : {1u, 2u})
       EXPECT_NEAR(mollified_linear_error(cells, p, center, 0.01), 0., 1e-9)
           << cells[0] << " x " << cells[1] << " cells, p = " << p;
+}
+
+TEST(GoalQuadrature, SumFactorizationEqualsFEValuesOnBilinearCells)
+{
+  // With MappingQ(1) and FE_Q a goal's cell vectors are summed by factors (the bilinear
+  // map of the cell's vertices, the FE's 1D Lagrange factors); MappingQ(2) on cells with
+  // straight edges is the same map, evaluated through FEValues. Both must agree to
+  // round-off on distorted cells, on cells thinned along y near the goal, on cells far
+  // wider than the support (the rule on the support's box) and on cells smaller than
+  // it (the iterated rule), for point goals of two radii and a mean goal.
+  const auto scene = manufactured();
+  Triangulation<2> tria;
+  GridGenerator::subdivided_hyper_rectangle(tria, {8u, 4u}, Point<2>(0., 0.),
+                                            Point<2>(1., 1.));
+  GridTools::distort_random(0.3, tria, true, 7);
+  for (unsigned int k = 0; k < 4; ++k)
+  {
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->center().distance(Point<2>(0.45, 0.52)) < 0.25)
+        cell->set_refine_flag(RefinementCase<2>::cut_y);
+    tria.execute_coarsening_and_refinement();
+  }
+  std::vector<GoalSpec> specs(3);
+  specs[0].location = {0.45, 0.52};
+  specs[0].radius = 0.01;
+  specs[1].location = {0.5, 0.5};
+  specs[1].radius = 0.2;
+  specs[2].kind = "mean";
+  specs[2].location = {0.3, 0.4, 0.62, 0.55};
+  for (unsigned int p : {1u, 2u, 3u})
+  {
+    const Stabilization none{0., SupgLength::volume, 0.};
+    Space<2> factors(*scene, tria, p, none, 1), fe_values(*scene, tria, p, none, 2);
+    factors.setup();
+    fe_values.setup();
+    for (const GoalSpec &g : specs)
+    {
+      Vector<double> a, b;
+      assemble_goal_vector(factors, g, a);
+      assemble_goal_vector(fe_values, g, b);
+      ASSERT_EQ(a.size(), b.size());
+      Vector<double> d = a;
+      d -= b;
+      EXPECT_GT(b.linfty_norm(), 0.);
+      EXPECT_LE(d.linfty_norm(), 1e-10 * b.linfty_norm())
+          << g.kind << " goal, radius " << g.radius << ", p = " << p;
+    }
+  }
 }
 
 // goal.weights = auto takes each goal's sign from d = J(I_2h u_h) - J(u_h). On cells

@@ -4,6 +4,7 @@
 // FEValues of each sub-cell count built once.
 #include "goal/goal_type.h"
 
+#include <deal.II/base/polynomial.h>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/fe/fe_values.h>
 
@@ -27,10 +28,7 @@ public:
   using SubCells = std::array<unsigned int, dim>;
   using Rule = std::array<dealii::Quadrature<1>, dim>;
 
-  DensityGoalPart(const dealii::Mapping<dim> &mapping, const dealii::FiniteElement<dim> &fe)
-      : mapping(mapping), fe(fe)
-  {
-  }
+  DensityGoalPart(const dealii::Mapping<dim> &mapping, const dealii::FiniteElement<dim> &fe);
   bool add_cell_vector(const CellIterator &cell, double weight,
                        dealii::Vector<double> &j) const override;
 
@@ -65,6 +63,17 @@ protected:
 
 private:
   dealii::FEValues<dim> &fe_values(const SubCells &n) const;
+  /// j += weight int density phi_l over the tensor rule q0 x q1 (unit coordinates) by
+  /// sum factorization: the bilinear map of the cell's vertices and the FE's 1D
+  /// Lagrange factors, without an FEValues. Only where `tensor` (MappingQ(1), FE_Q).
+  bool add_tensor(const CellIterator &cell, const dealii::Quadrature<1> &q0,
+                  const dealii::Quadrature<1> &q1, double weight,
+                  dealii::Vector<double> &j) const;
+  /// FE_Q's shape functions as products of 1D Lagrange polynomials (lexicographic
+  /// index a + (k+1) b -> the FE's index lex_to_fe), usable where the mapping is bilinear
+  bool tensor = false;
+  std::vector<dealii::Polynomials::Polynomial<double>> basis_1d;
+  std::vector<unsigned int> lex_to_fe;
   /// FEValues on iterated Gauss rules, one per number of sub-cells (built on demand)
   mutable std::map<SubCells, std::unique_ptr<dealii::FEValues<dim>>> values;
 };
