@@ -1,7 +1,8 @@
 #pragma once
 // The cell vectors of goals with a density (internal to lib/goal/): j(phi_l) =
-// int density phi_l dx by iterated Gauss rules on sub-cells of each cell, with the
-// FEValues of each sub-cell count built once.
+// int density phi_l dx by iterated Gauss rules on sub-cells of each cell: summed by
+// factors on MappingQ(1) cells with FE_Q, otherwise through FEValues (one per sub-cell
+// count, built once).
 #include "goal/goal_type.h"
 
 #include <deal.II/base/polynomial.h>
