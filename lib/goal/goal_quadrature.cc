@@ -153,13 +153,14 @@ bool DensityGoalPart<dim>::add_tensor(const CellIterator &cell, const Quadrature
       f0[i * m + a] = basis_1d[a].value(q0.point(i)[0]);
   const Point<dim> v0 = cell->vertex(0), v1 = cell->vertex(1), v2 = cell->vertex(2),
                    v3 = cell->vertex(3);
+  // the bilinear map: dx/deta = e + xi g everywhere on the cell
+  const Tensor<1, dim> e = v2 - v0, g = (v3 - v1) - (v2 - v0);
   bool nonzero = false;
   for (unsigned int k = 0; k < n1; ++k)
   {
     const double eta = q1.point(k)[0];
-    // along xi: x = a + xi d, dx/deta = e + xi g (the bilinear map at this eta)
-    const Tensor<1, dim> d = (v1 - v0) * (1. - eta) + (v3 - v2) * eta,
-                         e = v2 - v0, g = (v3 - v1) - (v2 - v0);
+    // along xi at this eta: x = a + xi d
+    const Tensor<1, dim> d = (v1 - v0) * (1. - eta) + (v3 - v2) * eta;
     const Point<dim> a = v0 + (v2 - v0) * eta;
     std::fill(r.begin(), r.end(), 0.);
     for (unsigned int i = 0; i < n0; ++i)
