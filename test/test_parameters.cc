@@ -7,11 +7,13 @@
 #include "space/space.h"
 #include "study/options.h"
 
+#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -194,4 +196,64 @@ TEST(Parameters, AdjointDelta0ReachesTheAdjointSpace)
   EXPECT_NEAR(delta({"scene.epsilon=1", "adaptivity.adjoint_inverse_bound=false"}, true),
               0.1, 1e-14);
   EXPECT_NEAR(delta({"scene.epsilon=1"}, false), 0.8, 1e-14);
+}
+
+// adaptivity.adjoint_outflow = goals: on boundary_layer (b = (1, 0), Dirichlet at x = 0
+// (inflow) and x = 1 (outflow), 4 x 4 cells of 1/4) the adjoint's DoFs on x = 1 are
+// free exactly on the wall faces of the cells that a goal's support meets and that are
+// thicker across the wall than the support; every other Dirichlet DoF stays constrained,
+// and the primal's space is untouched.
+TEST(Parameters, AdjointOutflowFreesTheWallDofsUnderAThinGoal)
+{
+  const auto free_wall_dofs = [](const std::string &outflow, const GoalSpec &goal,
+                                 bool adjoint = true)
+  {
+    const Parameters p = Parameters::from_overrides(
+        {"scene.name=boundary_layer", "scene.epsilon=1e-3",
+         "adaptivity.adjoint_outflow=" + outflow});
+    const auto scene = create_scene<2>(p);
+    dealii::Triangulation<2> tria;
+    scene->make_coarse_grid(tria);
+    tria.refine_global(2);
+    const auto space = adjoint ? make_adjoint_space(p, *scene, tria, 2, {goal})
+                               : make_space(p, *scene, tria, 2);
+    // Q2 DoFs on x = 0 and x = 1: 9 per line; count the unconstrained ones
+    std::vector<dealii::Point<2>> x(space->n_dofs());
+    dealii::DoFTools::map_dofs_to_support_points(space->mapping(), space->dof_handler(), x);
+    std::array<unsigned int, 2> free{};
+    for (dealii::types::global_dof_index i = 0; i < x.size(); ++i)
+      for (const unsigned int side : {0u, 1u})
+        if (std::abs(x[i][0] - side) < 1e-12 && !space->constraints().is_constrained(i))
+          ++free[side];
+    return std::make_pair(free, space->has_natural_outflow());
+  };
+  GoalSpec strip; // the mean over (0.98, 1) x (0.3, 0.45): the wall cell y in (0.25, 0.5)
+  strip.kind = "mean";
+  strip.location = {0.98, 0.3, 1., 0.45};
+  // one wall face, 3 Q2 DoFs on it; its end vertices are shared with constrained faces
+  EXPECT_EQ(free_wall_dofs("goals", strip), std::make_pair(std::array<unsigned int, 2>{0, 1},
+                                                           true));
+  EXPECT_EQ(free_wall_dofs("dirichlet", strip),
+            std::make_pair(std::array<unsigned int, 2>{0, 0}, false));
+  EXPECT_EQ(free_wall_dofs("goals", strip, false),
+            std::make_pair(std::array<unsigned int, 2>{0, 0}, false));
+  // the whole height: all 4 wall faces, all 9 DoFs on x = 1 (the corners' other faces
+  // are Neumann)
+  GoalSpec tall = strip;
+  tall.location = {0.98, 0., 1., 1.};
+  EXPECT_EQ(free_wall_dofs("goals", tall).first, (std::array<unsigned int, 2>{0, 9}));
+  // a support thicker than the cell (0.4 against 0.25 across the wall): Dirichlet
+  GoalSpec thick = strip;
+  thick.location = {0.6, 0.3, 1., 0.45};
+  EXPECT_EQ(free_wall_dofs("goals", thick).first, (std::array<unsigned int, 2>{0, 0}));
+  // a point goal of radius 0.01 at the inflow wall: nothing (x = 0 is not an outflow)
+  GoalSpec point;
+  point.kind = "point";
+  point.radius = 0.01;
+  point.location = {0.005, 0.6};
+  EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{0, 0}));
+  // at the outflow wall, inside the cell y in (0.5, 0.75): that face
+  point.location = {0.995, 0.6};
+  EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{0, 1}));
+  EXPECT_NE(error_of({"adaptivity.adjoint_outflow=natural"}), "");
 }

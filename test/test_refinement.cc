@@ -402,10 +402,10 @@ TEST(WallLayer, OutflowDirichletCellsGetTheLayerScaleAndNothingElseChanges)
     scene->make_coarse_grid(*t);
     t->refine_global(2);
   }
-  EXPECT_EQ(refine_wall_layer(layered, *scene, 0., 9.).passes, 0u);
+  EXPECT_EQ(refine_wall_layer(layered, *scene, 0.).passes, 0u);
   EXPECT_EQ(layered.n_active_cells(), plain.n_active_cells());
 
-  const WallLayer w = refine_wall_layer(layered, *scene, 2., 9.);
+  const WallLayer w = refine_wall_layer(layered, *scene, 2.);
   EXPECT_EQ(w.cells_before, plain.n_active_cells());
   EXPECT_EQ(w.cells_after, layered.n_active_cells());
   // the thinnest target is 2 eps / max b.n over the circle's face centres (< 1)
@@ -452,7 +452,7 @@ TEST(WallLayer, ALayerBeyondThirtyHalvingsIsAnInputErrorBeforeTheMeshGrows)
   const unsigned int cells = tria.n_active_cells();
   try
   {
-    refine_wall_layer(tria, *scene, 1., 9.); // log2(0.5 / 1e-16) = 52 halvings
+    refine_wall_layer(tria, *scene, 1.); // log2(0.5 / 1e-16) = 52 halvings
     FAIL() << "expected an InputError";
   }
   catch (const InputError &e)

@@ -144,6 +144,22 @@ inline const std::vector<Named<AdjointStabilization>> &names(AdjointStabilizatio
   return table;
 }
 
+/// adaptivity.adjoint_outflow: the adjoint's condition on the outflow part of the
+/// Dirichlet boundary (b.n > 0), which is the adjoint's inflow boundary.
+enum class AdjointOutflow
+{
+  dirichlet, ///< z = 0 imposed at the DoFs
+  goals      ///< natural (eps d_n z + (b.n) z = 0) where a goal's support lies in the
+             ///< wall cell, thinner across the wall than the cell
+};
+
+inline const std::vector<Named<AdjointOutflow>> &names(AdjointOutflow)
+{
+  static const std::vector<Named<AdjointOutflow>> table{
+      {AdjointOutflow::dirichlet, "dirichlet"}, {AdjointOutflow::goals, "goals"}};
+  return table;
+}
+
 /// The marking options (the adaptivity section derives from them).
 struct MarkingOptions
 {

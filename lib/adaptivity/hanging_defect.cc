@@ -106,6 +106,11 @@ HangingDefect<dim>::HangingDefect(const Space<dim> &primal, const Space<dim> &ad
                                adjoint.finite_element().n_dofs_per_cell());
   FETools::get_interpolation_matrix(adjoint.finite_element(), primal.finite_element(),
                                     to_primal);
+  std::vector<types::global_dof_index> dirichlet_masters;
+  if (adjoint.has_natural_outflow())
+    for (types::global_dof_index i = 0; i < dofs.n_dofs(); ++i)
+      if (needed[i] && !hanging.is_constrained(i) && primal.constraints().is_constrained(i))
+        dirichlet_masters.push_back(i);
   const auto cells = cells_holding(primal, adjoint, needed);
   std::vector<double> z(dofs.n_dofs());
   defect.assign(Z.size(), std::vector<double>(constrained.size() * n_nodes));
@@ -120,6 +125,10 @@ HangingDefect<dim>::HangingDefect(const Space<dim> &primal, const Space<dim> &ad
             s += to_primal(j, l) * Z[n][c.q[l] * n_nodes + k];
           z[c.p[j]] = s;
         }
+      // a natural-outflow adjoint does not vanish on Gamma_D, I_h z does (a master there
+      // is a Dirichlet DoF of the primal)
+      for (const auto m : dirichlet_masters)
+        z[m] = 0.;
       for (unsigned int s = 0; s < constrained.size(); ++s)
       {
         double d = z[constrained[s]];

@@ -110,6 +110,13 @@ void IndicatorAssembly<dim>::add_cell(const cell_iterator &cell,
   typename DoFHandler<dim>::active_cell_iterator cq(&tria, cell->level(), cell->index(),
                                                     &adjoint.dof_handler());
   cq->get_dof_indices(idx_q);
+  wall_w.clear();
+  if (adjoint.has_natural_outflow() && cell->at_boundary())
+    for (const auto f : cell->face_indices())
+      if (cell->at_boundary(f) &&
+          primal.scene.dirichlet_ids.count(cell->face(f)->boundary_id()))
+        for (unsigned int i = 0; i < fe_w.n_dofs_per_face(); ++i)
+          wall_w.push_back(fe_w.face_to_cell_index(i, f));
   for (unsigned int i = 0; i < dim; ++i)
     lift[i] = ops.directional_lift(cell, i);
   for (auto &a : weights)
@@ -247,12 +254,29 @@ void IndicatorAssembly<dim>::add_slab(Weights &a, unsigned int n, unsigned int c
   ind.eta_tau += eta_tau;
 }
 
+template <int dim>
+void IndicatorAssembly<dim>::restrict_nodes(const Weights &a, const FullMatrix<double> &R,
+                                            std::vector<Vector<double>> &out)
+{
+  for (unsigned int k = 0; k < n_nodes; ++k)
+    if (wall_w.empty())
+      sv::vmult(out[k], R, a.z_nodes[k]);
+    else
+    {
+      // z's nodal values on the Dirichlet faces are those faces' values of z (W is
+      // nodal), so R (z with them zeroed) vanishes there
+      sv::copy(z_wall, a.z_nodes[k]);
+      for (const unsigned int j : wall_w)
+        z_wall[j] = 0.;
+      sv::vmult(out[k], R, z_wall);
+    }
+}
+
 template <int dim> void IndicatorAssembly<dim>::restrict_weights(Weights &a, unsigned int n)
 {
   // R_h z from R_h applied to z's nodal vectors (R_h acts in space only); at hanging
   // nodes the conforming I_h z (adaptivity/hanging_defect.h)
-  for (unsigned int k = 0; k < n_nodes; ++k)
-    sv::vmult(a.Rz_nodes[k], ops.restriction(dim), a.z_nodes[k]);
+  restrict_nodes(a, ops.restriction(dim), a.Rz_nodes);
   if (!n_groups)
     return;
   gather_defects(a, n);
@@ -358,8 +382,7 @@ double IndicatorAssembly<dim>::directional_indicator(Weights &a, unsigned int i,
                                                      bool last, double &half_rho,
                                                      Indicators<dim> &ind)
 {
-  for (unsigned int k = 0; k < n_nodes; ++k)
-    sv::vmult(a.Rz_nodes[k], ops.restriction(i), a.z_nodes[k]);
+  restrict_nodes(a, ops.restriction(i), a.Rz_nodes);
   slab_function(kernel, basis, tau, a.Rz_nodes, Ri_z);
   difference(a.z, Ri_z, z_minus_Rz);
   half_rho = 0.5 * apply(rho_u, z_minus_Rz, false);

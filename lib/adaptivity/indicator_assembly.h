@@ -140,6 +140,14 @@ private:
   std::vector<std::vector<double>> hi_val, hi_der;
   std::vector<Weights> weights;
 
+  /// out[k] = R z_nodes[k] for the cell restriction R (R_h or R_i), with z's values on
+  /// the cell's Dirichlet faces taken as 0 where the adjoint does not vanish there
+  /// (Space::has_natural_outflow): R_h z then lies in the primal's test space.
+  void restrict_nodes(const Weights &a, const dealii::FullMatrix<double> &R,
+                      std::vector<dealii::Vector<double>> &out);
+  /// the cell's W DoFs on Dirichlet faces (only with a natural-outflow adjoint)
+  std::vector<unsigned int> wall_w;
+  dealii::Vector<double> z_wall;
   /// Rz_nodes = R_h z at the temporal nodes of slab n, the conforming I_h z on cells
   /// with hanging nodes (the groups' defects subtracted)
   void restrict_weights(Weights &a, unsigned int n);

@@ -310,19 +310,12 @@ namespace
 /// of the Dirichlet boundary (b.n > 0 at the face's centre at t = 0, T/2 or T, n the
 /// outward normal of the straight face): factor eps / max_t b.n; 0 otherwise.
 double wall_target(const Triangulation<2>::active_cell_iterator &cell, unsigned int f,
-                   const Scene<2> &scene, double factor, double end_time)
+                   const Scene<2> &scene, double factor)
 {
   const auto face = cell->face(f);
   if (!face->at_boundary() || !scene.dirichlet_ids.count(face->boundary_id()))
     return 0.;
-  const Tensor<1, 2> t = face->vertex(1) - face->vertex(0);
-  Tensor<1, 2> n({t[1], -t[0]});
-  n /= n.norm();
-  if (n * (face->center() - cell->center()) < 0.)
-    n = -n;
-  double bn = 0.;
-  for (const double time : {0., 0.5 * end_time, end_time})
-    bn = std::max(bn, scene.convection(face->center(), time) * n);
+  const double bn = outflow_speed(*cell, f, scene).second;
   return bn > 0. ? factor * scene.epsilon / bn : 0.;
 }
 
@@ -334,8 +327,7 @@ double thickness_across(const Triangulation<2>::active_cell_iterator &cell, unsi
 }
 } // namespace
 
-WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, double factor,
-                            double end_time)
+WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, double factor)
 {
   WallLayer w;
   w.cells_before = w.cells_after = tria.n_active_cells();
@@ -345,7 +337,7 @@ WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, doubl
   double ratio = 1.;
   for (const auto &cell : tria.active_cell_iterators())
     for (const unsigned int f : cell->face_indices())
-      if (const double target = wall_target(cell, f, scene, factor, end_time); target > 0.)
+      if (const double target = wall_target(cell, f, scene, factor); target > 0.)
         ratio = std::max(ratio, thickness_across(cell, f) / target);
   if (std::log2(ratio) > WallLayer::max_passes)
   {
@@ -364,7 +356,7 @@ WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, doubl
       RefinementCase<2> cut = RefinementCase<2>::no_refinement;
       for (const unsigned int f : cell->face_indices())
       {
-        const double target = wall_target(cell, f, scene, factor, end_time);
+        const double target = wall_target(cell, f, scene, factor);
         if (target > 0. && thickness_across(cell, f) > target)
         {
           cut = cut | RefinementCase<2>::cut_axis(f / 2);

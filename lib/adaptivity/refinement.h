@@ -95,7 +95,7 @@ struct WallLayer
 /// before refining, if a wall cell needs more than WallLayer::max_passes halvings.
 /// factor <= 0: nothing.
 WallLayer refine_wall_layer(dealii::Triangulation<2> &tria, const Scene<2> &scene,
-                            double factor, double end_time);
+                            double factor);
 
 /// One line for the run's output: "wall layer: P halvings, cells A -> B, thinnest
 /// target W" (or that no face is an outflow Dirichlet face).

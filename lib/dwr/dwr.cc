@@ -111,8 +111,7 @@ void AdaptiveLoop::run()
     tria.refine_global(prm.discretization.initial_refinements);
     if (prm.discretization.wall_layer > 0.)
       std::cout << wall_layer_text(refine_wall_layer(tria, *scene,
-                                                     prm.discretization.wall_layer,
-                                                     scene->end_time))
+                                                     prm.discretization.wall_layer))
                 << "\n";
     print_loop_header(std::cout);
     base_mb = mpi_max(resident_memory_mb());
@@ -170,7 +169,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
   // factorizations map fresh memory and would sit beside them; memory_estimate.h)
   release_free_memory();
   const auto primal_space = make_space(prm, *scene, tria, prm.discretization.p);
-  const auto adjoint_space = make_adjoint_space(prm, *scene, tria, q);
+  const auto adjoint_space = make_adjoint_space(prm, *scene, tria, q, goals);
   const std::vector<double> cw_scale = crosswind_scale_of_mesh();
   primal_space->set_crosswind_scale(cw_scale);
   adjoint_space->set_crosswind_scale(cw_scale);

@@ -12,6 +12,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace anisodwr
@@ -38,9 +39,30 @@ template <int dim> void Space<dim>::setup()
   }
   homogeneous.clear();
   DoFTools::make_hanging_node_constraints(dofs, homogeneous);
-  for (const auto id : scene.dirichlet_ids)
-    VectorTools::interpolate_boundary_values(map, dofs, id,
-                                             Functions::ZeroFunction<dim>(), homogeneous);
+  natural_outflow = false;
+  if (!natural_rule)
+    for (const auto id : scene.dirichlet_ids)
+      VectorTools::interpolate_boundary_values(
+          map, dofs, id, Functions::ZeroFunction<dim>(), homogeneous);
+  else
+  {
+    // the DoFs of the Dirichlet faces the rule does not select
+    std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
+    for (const auto &cell : dofs.active_cell_iterators())
+      for (const auto f : cell->face_indices())
+        if (cell->at_boundary(f) && scene.dirichlet_ids.count(cell->face(f)->boundary_id()))
+        {
+          if (outflow_speed(*cell, f, scene).first > 0. && natural_rule(*cell, f))
+          {
+            natural_outflow = true;
+            continue;
+          }
+          cell->face(f)->get_dof_indices(face_dofs);
+          for (const auto i : face_dofs)
+            if (!homogeneous.is_constrained(i))
+              homogeneous.add_line(i);
+        }
+  }
   homogeneous.close();
   DynamicSparsityPattern dsp(dofs.n_dofs());
   // keep_constrained_dofs = true: the unconstrained M, A live on the same pattern.
@@ -334,6 +356,26 @@ unsigned int auto_mapping_degree(const Triangulation<dim> &tria, unsigned int p)
     if (id != numbers::flat_manifold_id)
       return p;
   return 1;
+}
+
+std::pair<double, double>
+outflow_speed(const CellAccessor<2, 2> &cell, unsigned int f,
+              const Scene<2> &scene)
+{
+  const auto face = cell.face(f);
+  const Tensor<1, 2> t = face->vertex(1) - face->vertex(0);
+  Tensor<1, 2> n({t[1], -t[0]});
+  n /= n.norm();
+  if (n * (face->center() - cell.center()) < 0.)
+    n = -n;
+  double lo = std::numeric_limits<double>::max(), hi = -lo;
+  for (const double time : {0., 0.5 * scene.end_time, scene.end_time})
+  {
+    const double bn = scene.convection(face->center(), time) * n;
+    lo = std::min(lo, bn);
+    hi = std::max(hi, bn);
+  }
+  return {lo, hi};
 }
 
 template class Space<2>;

@@ -16,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include "scene/scene.h"
@@ -48,6 +49,17 @@ public:
   /// Distributes DoFs, builds constraints and the sparsity pattern (call after
   /// refinement).
   void setup();
+  /// Which boundary face (cell, face number) of an outflow Dirichlet part (outflow_speed()
+  /// > 0 at all three times) leaves its DoFs unconstrained.
+  using FaceRule = std::function<bool(const dealii::CellAccessor<dim, dim> &, unsigned int)>;
+  /// Leave the DoFs of the outflow Dirichlet faces that `rule` selects unconstrained: the
+  /// weak form then imposes eps d_n v + (b.n) v = 0 there on the transposed problem,
+  /// i.e. v = O(eps) on its inflow boundary (the adjoint's natural inflow condition,
+  /// doc/method.md §5). A DoF that is also on another Dirichlet face stays constrained.
+  /// Set before setup(); empty: every Dirichlet DoF constrained.
+  void set_natural_outflow(FaceRule rule) { natural_rule = std::move(rule); }
+  /// Whether setup() left a Dirichlet DoF unconstrained.
+  bool has_natural_outflow() const { return natural_outflow; }
   /// setup() numbers the DoFs downstream along b (the scene's convection at the centre
   /// of its bounding box at t = 0): ILU and Gauss-Seidel then sweep with the flow, which
   /// makes them nearly exact for convection-dominated slab matrices. No effect if b = 0.
@@ -137,6 +149,8 @@ private:
   double length_along(const typename dealii::Triangulation<dim>::cell_iterator &cell,
                       const dealii::Tensor<1, dim> &beta) const;
   const Stabilization stab;
+  FaceRule natural_rule;
+  bool natural_outflow = false;
   std::vector<double> cw_scale;
   std::function<bool(dealii::types::global_dof_index)> downstream;
   dealii::FE_Q<dim> fe;
@@ -161,6 +175,13 @@ private:
   mutable std::map<double, std::vector<dealii::Vector<double>>> load_terms;
   mutable std::mutex load_terms_mutex;
 };
+/// The smallest b.n over t = 0, T/2, T at the centre of the boundary face `f` of `cell`
+/// (n the outward normal of the straight face through its vertices), and the largest:
+/// the face is an outflow face at all three times if min > 0, at one of them if max > 0.
+std::pair<double, double>
+outflow_speed(const dealii::CellAccessor<2, 2> &cell, unsigned int f,
+              const Scene<2> &scene);
+
 /// discretization.mapping_degree = 0 (auto): p (isoparametric) if a cell, face or line
 /// of `tria` carries a manifold other than the flat one (a curved boundary or interior),
 /// else 1.

@@ -4,6 +4,7 @@
 // slab/, the adaptivity section for the marking, and the spaces of a run.
 #include "config/parameters.h"
 #include "goal/goal_input.h"
+#include "scene/goal_spec.h"
 #include "scene/scene.h"
 #include "slab/slab_solver_options.h"
 
@@ -46,10 +47,12 @@ std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scen
                                      const dealii::Triangulation<2, 2> &tria,
                                      unsigned int degree, double tau_scale = 1.);
 /// The adjoint's space: as make_space, with the delta0 of the adaptivity section
-/// (adjoint_stabilization, adjoint_delta0).
+/// (adjoint_stabilization, adjoint_delta0) and, with adjoint_outflow = goals, the outflow
+/// Dirichlet faces natural where a goal's support lies within the wall cell.
 std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<2> &scene,
                                              const dealii::Triangulation<2, 2> &tria,
-                                             unsigned int degree);
+                                             unsigned int degree,
+                                             const std::vector<GoalSpec> &goals = {});
 
 /// Warnings on combinations of DWR keys that run but are known to mislead (each one
 /// line, naming the keys; empty if there are none). The loop prints them first.

@@ -81,8 +81,7 @@ LevelResult solve_level(const Parameters &prm, const Scene<2> &scene, unsigned i
   scene.make_coarse_grid(tria);
   tria.refine_global(refinements);
   if (prm.study.mode == StudyMode::single && prm.discretization.wall_layer > 0.)
-    std::cout << wall_layer_text(refine_wall_layer(tria, scene, prm.discretization.wall_layer,
-                                                   scene.end_time))
+    std::cout << wall_layer_text(refine_wall_layer(tria, scene, prm.discretization.wall_layer))
               << "\n";
   const auto space_ptr = make_space(prm, scene, tria, prm.discretization.p);
   const Space<2> &space = *space_ptr;
