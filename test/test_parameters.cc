@@ -255,5 +255,8 @@ TEST(Parameters, AdjointOutflowFreesTheWallDofsUnderAThinGoal)
   // at the outflow wall, inside the cell y in (0.5, 0.75): that face
   point.location = {0.995, 0.6};
   EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{0, 1}));
+  // in the same wall cell but 0.15 from the wall (more than its extent 0.02): nothing
+  point.location = {0.85, 0.6};
+  EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{0, 0}));
   EXPECT_NE(error_of({"adaptivity.adjoint_outflow=natural"}), "");
 }

@@ -127,7 +127,7 @@ struct AdaptivitySection : MarkingOptions
   unsigned int adjoint_degree = 0;
   SpaceIndicator space_indicator = SpaceIndicator::primal_residual;
   AdjointStabilization adjoint_stabilization = AdjointStabilization::transposed;
-  AdjointOutflow adjoint_outflow = AdjointOutflow::dirichlet;
+  AdjointOutflow adjoint_outflow = AdjointOutflow::goals;
   double adjoint_delta0 = 0.1; ///< < 0: discretization.delta0
   /// the adjoint's delta_K <= h_min^2 / (eps q^4) (Stabilization::inverse_bound)
   bool adjoint_inverse_bound = true;

@@ -104,15 +104,41 @@ double thickness_across(const dealii::CellAccessor<2, 2> &cell, unsigned int f)
   return cell.face(f)->center().distance(cell.face(f ^ 1u)->center());
 }
 
-/// adaptivity.adjoint_outflow = goals: a wall face is natural where a goal's support
-/// meets the face's cell and is thinner across the face than the cell (a point goal's
-/// disk of radius r > 0: 2r; a mean goal's rectangle: its extent along the face's
-/// normal). There the exact adjoint rises from 0 at the wall to the goal's size within
-/// the support, inside one cell, which the adjoint with z = 0 imposed at the wall cannot
-/// represent: its test functions vanish where the goal sits. A larger support keeps z =
-/// 0: the free wall values then add an O(delta_K) term (boundary_layer's goal over half
-/// the domain: I_eff 1.57 instead of 0.96 at loop 1; doc/results.md, "Goals inside an
-/// outflow layer").
+/// The distance from the segment [a, b] to the box (convex along the segment: a ternary
+/// search).
+double distance_to_box(const dealii::Point<2> &a, const dealii::Point<2> &b,
+                       const dealii::BoundingBox<2> &box)
+{
+  const auto at = [&](double t)
+  {
+    const dealii::Point<2> p = a + t * (b - a);
+    dealii::Point<2> q;
+    for (unsigned int d = 0; d < 2; ++d)
+      q[d] = std::clamp(p[d], box.lower_bound(d), box.upper_bound(d));
+    return p.distance(q);
+  };
+  double lo = 0, hi = 1;
+  for (int i = 0; i < 60; ++i)
+  {
+    const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+    if (at(m1) <= at(m2))
+      hi = m2;
+    else
+      lo = m1;
+  }
+  return std::min({at(0.), at(1.), at(0.5 * (lo + hi))});
+}
+
+/// adaptivity.adjoint_outflow = goals: a wall face is natural where a goal's support is
+/// at the wall (within its own extent across the wall of the face), meets the face's
+/// cell and is thinner across the face than the cell (a point goal's disk of radius r >
+/// 0: extent 2r; a mean goal's rectangle: its extent along the face's normal). There
+/// the exact adjoint rises from 0 at the wall to the goal's size within the support,
+/// inside one cell, which the adjoint with z = 0 imposed at the wall cannot represent:
+/// its test functions vanish where the goal sits. A larger support, or one away from
+/// the wall, keeps z = 0: the free wall values would only add an O(delta_K) term
+/// (boundary_layer's goal over half the domain: I_eff 1.57 instead of 0.96 at loop 1;
+/// doc/results.md, "Goals inside an outflow layer").
 Space<2>::FaceRule goal_wall_rule(const std::vector<GoalSpec> &goals)
 {
   return [goals](const dealii::CellAccessor<2, 2> &cell, unsigned int f)
@@ -131,7 +157,8 @@ Space<2>::FaceRule goal_wall_rule(const std::vector<GoalSpec> &goals)
       {
         const dealii::Point<2> c(g.location[0], g.location[1]);
         const dealii::Tensor<1, 2> r({g.radius, g.radius});
-        support = dealii::BoundingBox<2>(std::make_pair(dealii::Point<2>(c - r), dealii::Point<2>(c + r)));
+        support = dealii::BoundingBox<2>(
+            std::make_pair(dealii::Point<2>(c - r), dealii::Point<2>(c + r)));
         extent = 2 * g.radius;
       }
       else if (g.kind == "mean" && g.location.size() == 4)
@@ -145,7 +172,8 @@ Space<2>::FaceRule goal_wall_rule(const std::vector<GoalSpec> &goals)
       else
         continue;
       if (extent < thickness &&
-          box.get_neighbor_type(support) != dealii::NeighborType::not_neighbors)
+          box.get_neighbor_type(support) != dealii::NeighborType::not_neighbors &&
+          distance_to_box(face->vertex(0), face->vertex(1), support) <= extent)
         return true;
     }
     return false;
