@@ -149,8 +149,8 @@ inline const std::vector<Named<AdjointStabilization>> &names(AdjointStabilizatio
 enum class AdjointOutflow
 {
   dirichlet, ///< z = 0 imposed at the DoFs
-  goals      ///< natural (eps d_n z + (b.n) z = 0) where a goal's support lies in the
-             ///< wall cell, thinner across the wall than the cell
+  goals      ///< natural (eps d_n z + (b.n) z = 0) where a goal's support is at the
+             ///< wall, in the wall cell and thinner across the wall than the cell
 };
 
 inline const std::vector<Named<AdjointOutflow>> &names(AdjointOutflow)
