@@ -174,6 +174,9 @@ TEST(Probes, OverAndUndershootsOfBumpsAtVertices)
   EXPECT_EQ(r.overshoot_box, 0.);
   EXPECT_NEAR(r.undershoot_x, -3., 1e-12); // the vertex of the deepest bump
   EXPECT_NEAR(r.undershoot_y, 0., 1e-12);
+  EXPECT_NEAR(r.overshoot_x, 5.5, 1e-12); // the raised bump's vertex, outside the box
+  EXPECT_NEAR(r.overshoot_y, 0., 1e-12);
+  EXPECT_TRUE(std::isnan(r.overshoot_goals_x)); // no overshoot in the box
   // the box's deepest point is the vertex below (0, 3) on the line x = 0
   EXPECT_NEAR(r.undershoot_goals_x, 0., 1e-12);
   EXPECT_GT(r.undershoot_goals_y, 2.);

@@ -317,8 +317,13 @@ ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &map
     {
       const double over = std::max(uh[q] - r.u_max, 0.),
                    under = std::max(r.u_min - uh[q], 0.);
-      r.overshoot = std::max(r.overshoot, over);
       const auto &x = fv.quadrature_point(q);
+      if (over > r.overshoot)
+      {
+        r.overshoot = over;
+        r.overshoot_x = x[0];
+        r.overshoot_y = x[1];
+      }
       if (under > r.undershoot)
       {
         r.undershoot = under;
@@ -333,7 +338,12 @@ ProbeResult evaluate_probes(const DoFHandler<dim> &dofs, const Mapping<dim> &map
       if (spec.has_box && x[0] > spec.box[0] && x[0] < spec.box[1] &&
           x[1] > spec.box[2] && x[1] < spec.box[3])
       {
-        r.overshoot_box = std::max(r.overshoot_box, over);
+        if (over > r.overshoot_box)
+        {
+          r.overshoot_box = over;
+          r.overshoot_goals_x = x[0];
+          r.overshoot_goals_y = x[1];
+        }
         if (under > r.undershoot_box)
         {
           r.undershoot_box = under;

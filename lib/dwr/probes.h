@@ -68,6 +68,11 @@ struct ProbeResult
   /// where the undershoot in the box is largest (NaN if there is none)
   double undershoot_goals_x = std::numeric_limits<double>::quiet_NaN(),
          undershoot_goals_y = std::numeric_limits<double>::quiet_NaN();
+  /// where the overshoot over the domain and in the box is largest (NaN if none)
+  double overshoot_x = std::numeric_limits<double>::quiet_NaN(),
+         overshoot_y = std::numeric_limits<double>::quiet_NaN(),
+         overshoot_goals_x = std::numeric_limits<double>::quiet_NaN(),
+         overshoot_goals_y = std::numeric_limits<double>::quiet_NaN();
   double u_min = 0, u_max = 0; ///< the bounds used
   /// Where the bounds come from: "scene" (the scene's own), "exact" (the exact
   /// solution's extrema at T), "data" (the maximum principle on the data, see
@@ -91,7 +96,11 @@ struct ProbeResult
             {"undershoot_goals_x", undershoot_goals_x},
             {"undershoot_goals_y", undershoot_goals_y},
             {"u_min", u_min},
-            {"u_max", u_max}};
+            {"u_max", u_max},
+            {"overshoot_x", overshoot_x},
+            {"overshoot_y", overshoot_y},
+            {"overshoot_goals_x", overshoot_goals_x},
+            {"overshoot_goals_y", overshoot_goals_y}};
   }
 };
 
