@@ -319,12 +319,6 @@ double wall_target(const Triangulation<2>::active_cell_iterator &cell, unsigned 
   return bn > 0. ? factor * scene.epsilon / bn : 0.;
 }
 
-/// The thickness of `cell` across its face `f`: the distance of the centres of that face
-/// and the opposite one.
-double thickness_across(const Triangulation<2>::active_cell_iterator &cell, unsigned int f)
-{
-  return cell->face(f)->center().distance(cell->face(f ^ 1u)->center());
-}
 } // namespace
 
 WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, double factor)
@@ -338,7 +332,7 @@ WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, doubl
   for (const auto &cell : tria.active_cell_iterators())
     for (const unsigned int f : cell->face_indices())
       if (const double target = wall_target(cell, f, scene, factor); target > 0.)
-        ratio = std::max(ratio, thickness_across(cell, f) / target);
+        ratio = std::max(ratio, thickness_across(*cell, f) / target);
   if (std::log2(ratio) > WallLayer::max_passes)
   {
     std::ostringstream m;
@@ -357,7 +351,7 @@ WallLayer refine_wall_layer(Triangulation<2> &tria, const Scene<2> &scene, doubl
       for (const unsigned int f : cell->face_indices())
       {
         const double target = wall_target(cell, f, scene, factor);
-        if (target > 0. && thickness_across(cell, f) > target)
+        if (target > 0. && thickness_across(*cell, f) > target)
         {
           cut = cut | RefinementCase<2>::cut_axis(f / 2);
           w.thinnest_target = w.thinnest_target > 0. ? std::min(w.thinnest_target, target)

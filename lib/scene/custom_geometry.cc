@@ -18,18 +18,6 @@ namespace anisodwr
 {
 using namespace dealii;
 
-/// The unit normal of the straight face f of cell, pointing out of the cell.
-Tensor<1, 2> outward_normal(const Triangulation<2>::active_cell_iterator &cell,
-                            unsigned int f)
-{
-  const auto face = cell->face(f);
-  const Tensor<1, 2> e = face->vertex(1) - face->vertex(0);
-  Tensor<1, 2> n({e[1], -e[0]});
-  if (n * (face->center() - cell->center()) < 0)
-    n = -n;
-  return n / n.norm();
-}
-
 namespace
 {
 /// A library's (deal.II's) error text in one line: its "Additional information", else
@@ -290,7 +278,7 @@ SamplePoints CustomScene::sample_points() const
       {
         const auto face = cell->face(f);
         by_id[face->boundary_id()].push_back(
-            {face->center(), outward_normal(cell, f), face->boundary_id()});
+            {face->center(), outward_normal(*cell, f), face->boundary_id()});
       }
   for (const auto &[id, points] : by_id)
   {

@@ -40,8 +40,4 @@ struct CustomScene::Geometry
   void read_mesh(const SceneOptions &o, std::string &domain);
 };
 
-/// The unit normal of the straight face f of cell, pointing out of the cell.
-dealii::Tensor<1, 2>
-outward_normal(const dealii::Triangulation<2>::active_cell_iterator &cell,
-               unsigned int f);
 } // namespace anisodwr

@@ -279,7 +279,7 @@ void CustomScene::check_data_finite(const SceneOptions &o) const
       if (cell->at_boundary(fi))
       {
         const auto face = cell->face(fi);
-        const Tensor<1, 2> n = outward_normal(cell, fi);
+        const Tensor<1, 2> n = outward_normal(*cell, fi);
         for (const Point<2> &x : {face->vertex(0), face->vertex(1), face->center()})
           for (const double t : times)
           {

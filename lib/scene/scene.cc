@@ -3,6 +3,8 @@
 #include "base/errors.h"
 #include "scene/scene_registry.h"
 
+#include <deal.II/grid/tria_accessor.h>
+
 namespace anisodwr
 {
 namespace
@@ -160,6 +162,16 @@ template <int dim> std::unique_ptr<Scene<dim>> create_scene(const SceneOptions &
     throw;
   }
   return scene;
+}
+
+dealii::Tensor<1, 2> outward_normal(const dealii::CellAccessor<2, 2> &cell, unsigned int f)
+{
+  const auto face = cell.face(f);
+  const dealii::Tensor<1, 2> e = face->vertex(1) - face->vertex(0);
+  dealii::Tensor<1, 2> n({e[1], -e[0]});
+  if (n * (face->center() - cell.center()) < 0)
+    n = -n;
+  return n / n.norm();
 }
 
 template class Scene<2>;

@@ -21,10 +21,14 @@
 namespace dealii
 {
 template <int dim, int spacedim> class Triangulation;
-}
+template <int dim, int spacedim> class CellAccessor;
+} // namespace dealii
 
 namespace anisodwr
 {
+/// The unit normal of the straight face f of `cell` (through its vertices), pointing out
+/// of the cell.
+dealii::Tensor<1, 2> outward_normal(const dealii::CellAccessor<2, 2> &cell, unsigned int f);
 
 /// Exact solution with analytic derivatives (no finite differences).
 template <int dim> class ExactSolution

@@ -358,16 +358,17 @@ unsigned int auto_mapping_degree(const Triangulation<dim> &tria, unsigned int p)
   return 1;
 }
 
+double thickness_across(const CellAccessor<2, 2> &cell, unsigned int f)
+{
+  return cell.face(f)->center().distance(cell.face(f ^ 1u)->center());
+}
+
 std::pair<double, double>
 outflow_speed(const CellAccessor<2, 2> &cell, unsigned int f,
               const Scene<2> &scene)
 {
   const auto face = cell.face(f);
-  const Tensor<1, 2> t = face->vertex(1) - face->vertex(0);
-  Tensor<1, 2> n({t[1], -t[0]});
-  n /= n.norm();
-  if (n * (face->center() - cell.center()) < 0.)
-    n = -n;
+  const Tensor<1, 2> n = outward_normal(cell, f);
   double lo = std::numeric_limits<double>::max(), hi = -lo;
   for (const double time : {0., 0.5 * scene.end_time, scene.end_time})
   {

@@ -175,6 +175,9 @@ private:
   mutable std::map<double, std::vector<dealii::Vector<double>>> load_terms;
   mutable std::mutex load_terms_mutex;
 };
+/// The thickness of `cell` across its face `f`: the distance of the centres of that face
+/// and the opposite one.
+double thickness_across(const dealii::CellAccessor<2, 2> &cell, unsigned int f);
 /// The smallest b.n over t = 0, T/2, T at the centre of the boundary face `f` of `cell`
 /// (n the outward normal of the straight face through its vertices), and the largest:
 /// the face is an outflow face at all three times if min > 0, at one of them if max > 0.

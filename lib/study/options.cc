@@ -98,12 +98,6 @@ std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scen
 
 namespace
 {
-/// The distance between the centres of face f of `cell` and the opposite face.
-double thickness_across(const dealii::CellAccessor<2, 2> &cell, unsigned int f)
-{
-  return cell.face(f)->center().distance(cell.face(f ^ 1u)->center());
-}
-
 /// The distance from the segment [a, b] to the box (convex along the segment: a ternary
 /// search).
 double distance_to_box(const dealii::Point<2> &a, const dealii::Point<2> &b,
@@ -121,10 +115,9 @@ double distance_to_box(const dealii::Point<2> &a, const dealii::Point<2> &b,
   for (int i = 0; i < 60; ++i)
   {
     const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-    if (at(m1) <= at(m2))
-      hi = m2;
-    else
-      lo = m1;
+    const bool left = at(m1) <= at(m2);
+    lo = left ? lo : m1;
+    hi = left ? m2 : hi;
   }
   return std::min({at(0.), at(1.), at(0.5 * (lo + hi))});
 }
@@ -144,9 +137,7 @@ Space<2>::FaceRule goal_wall_rule(const std::vector<GoalSpec> &goals)
   return [goals](const dealii::CellAccessor<2, 2> &cell, unsigned int f)
   {
     const auto face = cell.face(f);
-    dealii::Tensor<1, 2> n({face->vertex(1)[1] - face->vertex(0)[1],
-                            face->vertex(0)[0] - face->vertex(1)[0]});
-    n /= n.norm();
+    const dealii::Tensor<1, 2> n = outward_normal(cell, f);
     const double thickness = thickness_across(cell, f);
     const auto box = cell.bounding_box();
     for (const GoalSpec &g : goals)
