@@ -260,3 +260,30 @@ TEST(Parameters, AdjointOutflowFreesTheWallDofsUnderAThinGoal)
   EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{0, 0}));
   EXPECT_NE(error_of({"adaptivity.adjoint_outflow=natural"}), "");
 }
+
+TEST(Parameters, AdjointCrosswindFalseLeavesTheTermToThePrimal)
+{
+  // boundary_layer, eps = 1e-3, cells of 1/4: the crosswind Peclet number |b| h / (2 eps)
+  // is 125, so the term acts on every cell of a space that carries it
+  const auto acts_on = [](const Space<2> &space)
+  {
+    unsigned int n = 0;
+    for (const auto &cell : space.dof_handler().get_triangulation().active_cell_iterators())
+      n += space.cell_diffusion(cell).active;
+    return n;
+  };
+  for (const std::string value : {"true", "false"})
+  {
+    const Parameters p = Parameters::from_overrides(
+        {"scene.name=boundary_layer", "scene.epsilon=1e-3", "discretization.crosswind0=1",
+         "adaptivity.adjoint_crosswind=" + value});
+    const auto scene = create_scene<2>(p);
+    dealii::Triangulation<2> tria;
+    scene->make_coarse_grid(tria);
+    tria.refine_global(2);
+    EXPECT_EQ(acts_on(*make_space(p, *scene, tria, 1)), 16u);
+    EXPECT_EQ(acts_on(*make_adjoint_space(p, *scene, tria, 2, scene->default_goals(0.))),
+              value == "true" ? 16u : 0u)
+        << value;
+  }
+}

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <iostream>
 
 using namespace dealii;
@@ -461,4 +462,79 @@ TEST(WallLayer, ALayerBeyondThirtyHalvingsIsAnInputErrorBeforeTheMeshGrows)
     EXPECT_NE(std::string(e.what()).find("at most 30"), std::string::npos);
   }
   EXPECT_EQ(tria.n_active_cells(), cells);
+}
+
+// discretization.goal_streak on boundary_layer's unit square (b = (1, 0), T = 1), cells
+// of 1/4: a goal at (0.5, 0.5) w = 0.1 wide across b is carried upstream to x = 0.
+namespace
+{
+struct Streaked
+{
+  GoalStreak streak;
+  Triangulation<2> tria;
+};
+std::unique_ptr<Streaked> streaked(const GoalSpec &goal, double factor)
+{
+  const auto scene = create_scene<2>(Parameters::from_overrides(
+      {"scene.name=boundary_layer", "scene.epsilon=1e-3", "scene.end_time=1"}).scene);
+  auto s = std::make_unique<Streaked>();
+  scene->make_coarse_grid(s->tria);
+  s->tria.refine_global(2);
+  s->streak = refine_goal_streak(s->tria, *scene, {goal}, factor);
+  return s;
+}
+} // namespace
+
+TEST(GoalStreak, CellsOnTheUpstreamPathAreHalvedAcrossBToTheTarget)
+{
+  GoalSpec point;
+  point.kind = "point";
+  point.location = {0.5, 0.5};
+  point.radius = 0.05;
+  EXPECT_EQ(streaked(point, 0.)->streak.passes, 0u);
+  const auto s = streaked(point, 4.); // target 0.1 / 4 = 0.025 across b
+  EXPECT_EQ(s->streak.goals, 1u);
+  EXPECT_DOUBLE_EQ(s->streak.thinnest_target, 0.025);
+  // 0.25 -> 0.0156 needs four halvings in y; the closure's grading may take one more pass
+  EXPECT_GE(s->streak.passes, 4u);
+  EXPECT_LE(s->streak.passes, 5u);
+  EXPECT_EQ(s->streak.cells_before, 16u);
+  EXPECT_EQ(s->streak.cells_after, s->tria.n_active_cells());
+  unsigned int on_path = 0;
+  double thinnest = 1.;
+  for (const auto &cell : s->tria.active_cell_iterators())
+  {
+    const auto box = cell->bounding_box();
+    const double hx = box.side_length(0), hy = box.side_length(1);
+    thinnest = std::min(thinnest, hy);
+    // every cell that meets the streak 0 < x < 0.5, |y - 0.5| < 0.05 is at most the
+    // target thick across b and keeps its length along b (the cuts are across b; only
+    // deal.II's closure downstream of the goal's centre, x > 0.5, mixes in cuts along b)
+    if (box.upper_bound(0) <= 0.5 + 1e-12 && box.lower_bound(1) < 0.55 &&
+        box.upper_bound(1) > 0.45)
+    {
+      EXPECT_LE(hy, 0.025) << cell->center();
+      EXPECT_DOUBLE_EQ(hx, 0.25) << cell->center();
+      ++on_path;
+    }
+    // far across b (|y - 0.5| > 0.3) as before
+    if (std::abs(cell->center()[1] - 0.5) > 0.3)
+    {
+      EXPECT_DOUBLE_EQ(hy, 0.25) << cell->center();
+    }
+  }
+  EXPECT_DOUBLE_EQ(thinnest, 0.25 / 16); // halved just below the target, not further
+  EXPECT_GE(on_path, 2u * 7u); // two columns, at least 7 cells across 0.45 < y < 0.55
+
+  // a mean goal over a rectangle 0.1 wide across b is the same streak
+  GoalSpec mean;
+  mean.kind = "mean";
+  mean.location = {0.45, 0.45, 0.55, 0.55};
+  const auto m = streaked(mean, 4.);
+  EXPECT_EQ(m->tria.n_active_cells(), s->tria.n_active_cells());
+  // a flux goal has no streak
+  GoalSpec flux;
+  flux.kind = "flux";
+  flux.location = {1};
+  EXPECT_EQ(streaked(flux, 4.)->streak.goals, 0u);
 }

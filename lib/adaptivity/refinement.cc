@@ -389,6 +389,193 @@ std::string wall_layer_text(const WallLayer &w)
   return s.str();
 }
 
+namespace
+{
+/// One goal's upstream path: its points, the unit direction of b on each segment, and
+/// the support's width across b there.
+struct Streak
+{
+  std::vector<Point<2>> path;
+  std::vector<Tensor<1, 2>> along;
+  std::vector<double> width;
+};
+
+/// The width of a goal's support across the unit direction e: 2 r for a point goal, the
+/// rectangle's extent along e's normal for a mean goal; 0 for other kinds.
+double support_width(const GoalSpec &g, const Tensor<1, 2> &e)
+{
+  if (g.kind == "point" && g.radius > 0 && g.location.size() == 2)
+    return 2 * g.radius;
+  if (g.kind == "mean" && g.location.size() == 4)
+    return std::abs(e[1]) * (g.location[2] - g.location[0]) +
+           std::abs(e[0]) * (g.location[3] - g.location[1]);
+  return 0.;
+}
+
+bool inside_mesh(const Triangulation<2> &tria, const Point<2> &p)
+{
+  for (const auto &cell : tria.active_cell_iterators())
+    if (cell->bounding_box().point_inside(p) && cell->point_inside(p))
+      return true;
+  return false;
+}
+
+/// The upstream path of a point or mean goal's centre (empty for other kinds).
+Streak trace_streak(const Triangulation<2> &tria, const Scene<2> &scene, const GoalSpec &g)
+{
+  Streak s;
+  Point<2> x;
+  if (g.kind == "point" && g.radius > 0 && g.location.size() == 2)
+    x = Point<2>(g.location[0], g.location[1]);
+  else if (g.kind == "mean" && g.location.size() == 4)
+    x = Point<2>(0.5 * (g.location[0] + g.location[2]), 0.5 * (g.location[1] + g.location[3]));
+  else
+    return s;
+  constexpr unsigned int steps = 400;
+  const double dt = scene.end_time / steps;
+  double t = scene.end_time;
+  s.path.push_back(x);
+  for (unsigned int k = 0; k < steps; ++k, t -= dt)
+  {
+    const Tensor<1, 2> b = scene.convection(x, t);
+    if (b.norm() == 0.)
+      break;
+    const Point<2> mid = x - 0.5 * dt * b;
+    const Tensor<1, 2> bm = scene.convection(mid, t - 0.5 * dt);
+    if (bm.norm() == 0.)
+      break;
+    const Tensor<1, 2> e = bm / bm.norm();
+    x = x - dt * bm;
+    s.along.push_back(e);
+    s.width.push_back(support_width(g, e));
+    s.path.push_back(x);
+    if (!inside_mesh(tria, x))
+      break;
+  }
+  return s;
+}
+
+/// The distance from p to the segment [a, b].
+double distance_to_segment(const Point<2> &p, const Point<2> &a, const Point<2> &b)
+{
+  const Tensor<1, 2> d = b - a;
+  const double l2 = d.norm_square();
+  const double t = l2 > 0. ? std::clamp((p - a) * d / l2, 0., 1.) : 0.;
+  return p.distance(a + t * d);
+}
+
+/// The local axes of a quadrilateral cell (the mean of its opposite edges).
+std::array<Tensor<1, 2>, 2> local_axes(const Triangulation<2>::active_cell_iterator &cell)
+{
+  return {{0.5 * ((cell->vertex(1) - cell->vertex(0)) + (cell->vertex(3) - cell->vertex(2))),
+           0.5 * ((cell->vertex(2) - cell->vertex(0)) + (cell->vertex(3) - cell->vertex(1)))}};
+}
+
+double cross(const Tensor<1, 2> &a, const Tensor<1, 2> &e)
+{
+  return std::abs(a[0] * e[1] - a[1] * e[0]);
+}
+
+/// The width of `cell` across the unit direction e.
+double width_across(const Triangulation<2>::active_cell_iterator &cell, const Tensor<1, 2> &e)
+{
+  const auto axis = local_axes(cell);
+  return cross(axis[0], e) + cross(axis[1], e);
+}
+
+/// The cut that halves `cell` across the streak's direction e where it spans more than
+/// `target` across e (each local axis at least 45 degrees across e).
+RefinementCase<2> cut_across(const Triangulation<2>::active_cell_iterator &cell,
+                             const Tensor<1, 2> &e, double target)
+{
+  const auto axis = local_axes(cell);
+  RefinementCase<2> cut = RefinementCase<2>::no_refinement;
+  for (unsigned int i = 0; i < 2; ++i)
+  {
+    const double along = std::abs(axis[i] * e);
+    const double across = cross(axis[i], e);
+    if (across > target && across >= along)
+      cut = cut | RefinementCase<2>::cut_axis(i);
+  }
+  return cut;
+}
+} // namespace
+
+GoalStreak refine_goal_streak(Triangulation<2> &tria, const Scene<2> &scene,
+                              const std::vector<GoalSpec> &goals, double factor)
+{
+  GoalStreak r;
+  r.cells_before = r.cells_after = tria.n_active_cells();
+  if (!(factor > 0.))
+    return r;
+  std::vector<Streak> streaks;
+  for (const GoalSpec &g : goals)
+    if (Streak s = trace_streak(tria, scene, g); !s.along.empty())
+      streaks.push_back(std::move(s));
+  r.goals = streaks.size();
+  // the cut of a cell near a streak, and the target it is halved to
+  const auto cut_of = [&](const Triangulation<2>::active_cell_iterator &cell, double &target)
+  {
+    RefinementCase<2> cut = RefinementCase<2>::no_refinement;
+    const Point<2> c = cell->center();
+    for (const Streak &s : streaks)
+      for (unsigned int k = 0; k < s.along.size(); ++k)
+        if (distance_to_segment(c, s.path[k], s.path[k + 1]) <=
+            0.5 * (s.width[k] + width_across(cell, s.along[k])))
+        {
+          const double w = s.width[k] / factor;
+          const RefinementCase<2> more = cut_across(cell, s.along[k], w);
+          if (more != RefinementCase<2>::no_refinement)
+            target = target > 0. ? std::min(target, w) : w;
+          cut = cut | more;
+        }
+    return cut;
+  };
+  for (;;)
+  {
+    unsigned int flagged = 0;
+    for (const auto &cell : tria.active_cell_iterators())
+    {
+      double target = 0.;
+      const RefinementCase<2> cut = cut_of(cell, target);
+      if (cut == RefinementCase<2>::no_refinement)
+        continue;
+      if (r.passes == 0 && std::log2(cell->diameter() / target) > GoalStreak::max_passes)
+      {
+        std::ostringstream m;
+        m << "discretization.goal_streak = " << factor << ": a cell of diameter "
+          << cell->diameter() << " on a goal's upstream path would need more than "
+          << GoalStreak::max_passes << " halvings to be " << target << " thick across b "
+          << "(a goal's support width / goal_streak); expected a smaller goal_streak, "
+          << "more initial_refinements, or 0";
+        throw InputError(m.str());
+      }
+      r.thinnest_target = r.thinnest_target > 0. ? std::min(r.thinnest_target, target) : target;
+      cell->set_refine_flag(cut);
+      ++flagged;
+    }
+    if (flagged == 0 || r.passes > GoalStreak::max_passes)
+      break;
+    tria.execute_coarsening_and_refinement();
+    ++r.passes;
+  }
+  r.cells_after = tria.n_active_cells();
+  return r;
+}
+
+std::string goal_streak_text(const GoalStreak &s)
+{
+  std::ostringstream m;
+  if (s.passes == 0)
+    m << "goal streak: " << s.goals << " goals traced upstream, no cell thicker than its "
+      << "target, mesh unchanged";
+  else
+    m << "goal streak: " << s.passes << " halvings along " << s.goals
+      << " goals' upstream paths, cells " << s.cells_before << " -> " << s.cells_after
+      << ", thinnest target " << std::setprecision(3) << s.thinnest_target;
+  return m.str();
+}
+
 template std::vector<unsigned char>
 cells_out_of_bounds<2>(const DoFHandler<2> &, const std::vector<Vector<double>> &, double,
                        double, double, double, const std::function<Tensor<1, 2>(const Point<2> &)> &);

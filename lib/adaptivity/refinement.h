@@ -5,6 +5,7 @@
 // coarsening, bisection of the theta_tau fraction of slabs with the largest
 // |eta_tau^n|, and the aspect ratio of the mesh.
 #include "adaptivity/estimator.h"
+#include "scene/goal_spec.h"
 #include "time/time_mesh.h"
 
 #include <deal.II/fe/mapping.h>
@@ -100,6 +101,35 @@ WallLayer refine_wall_layer(dealii::Triangulation<2> &tria, const Scene<2> &scen
 /// One line for the run's output: "wall layer: P halvings, cells A -> B, thinnest
 /// target W" (or that no face is an outflow Dirichlet face).
 std::string wall_layer_text(const WallLayer &w);
+
+/// What refine_goal_streak did.
+struct GoalStreak
+{
+  static constexpr unsigned int max_passes = 30;
+  unsigned int goals = 0; ///< the point and mean goals traced
+  unsigned int passes = 0;
+  unsigned int cells_before = 0, cells_after = 0;
+  /// the smallest target thickness w / factor of a halved cell (0: none)
+  double thinnest_target = 0.;
+};
+
+/// A priori mesh along the goals' upstream characteristics (discretization.goal_streak).
+/// Where eps is small against |b| times a goal's support width w, the goal's adjoint is
+/// its support carried upstream along -b over [0, T]: a streak w wide across b, and a
+/// same-mesh adjoint on cells much thicker than w cannot hold it (the goal's estimate is
+/// then a fraction of its error, of either sign). Traces the centre of each point goal
+/// (radius > 0; w = 2 r) and mean goal (w = the rectangle's width across b) back along
+/// -b(x, t) from t = T to 0 (midpoint rule, 400 steps, until the path leaves the mesh),
+/// and halves, pass after pass, the active cells within w / 2 of the path (plus half the
+/// cell's diameter) across b, along each local axis that lies at least 45 degrees across
+/// b and spans more than w / factor across it. Throws InputError (naming the key) if a
+/// cell would need more than GoalStreak::max_passes halvings. factor <= 0: nothing.
+GoalStreak refine_goal_streak(dealii::Triangulation<2> &tria, const Scene<2> &scene,
+                              const std::vector<GoalSpec> &goals, double factor);
+
+/// One line for the run's output: "goal streak: P halvings along G goals' upstream
+/// paths, cells A -> B, thinnest target W".
+std::string goal_streak_text(const GoalStreak &s);
 
 /// Bisects the ceil(theta_tau N) slabs with the largest |eta_tau^n| (none if theta_tau =
 /// 0).

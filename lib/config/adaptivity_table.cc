@@ -173,6 +173,13 @@ std::vector<Entry> adaptivity_entries()
        "term's eps Lap part below the diffusion. Without it the adjoint of degree q = 4 "
        "grows without bound on thin cells (doc/results.md, 'Error control without "
        "tuning'); false: delta_K = adjoint_delta0 h_K alone."},
+      {"adaptivity", "adjoint_crosswind", "true", m(&S::adjoint_crosswind), boolean,
+       "The adjoint carries the primal's crosswind term (discretization.crosswind0 > 0, in "
+       "its form and with its switch). The term is not consistent: on the adjoint it "
+       "spreads a goal's streak across b by about |b| h_perp / 2 (the first loop's switch "
+       "is 1), and the estimate then weights the residual with the spread adjoint; false: "
+       "the adjoint has SUPG alone (the estimate still carries the primal's term in S). "
+       "No effect without the crosswind term."},
       {"adaptivity", "bound_refinement", "0", m(&S::bound_refinement), real(0.),
        "Refinement where u_h leaves its bounds (probes.csv's u_min, u_max: the scene's, "
        "the exact solution's or the data's by the maximum principle): a cell with a "

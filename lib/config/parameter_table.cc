@@ -151,6 +151,14 @@ std::vector<Entry> discretization_entries()
        "first DWR loop already resolves the layer that a same-mesh adjoint cannot see "
        "(doc/method.md, 'A priori wall layer'). 0 = off; 1 resolves the layer's length "
        "scale. study.mode = dwr and single only."},
+      {"discretization", "goal_streak", "0", m(&S::goal_streak), real(0.),
+       "A priori mesh along the goals' upstream paths: a point goal's (radius r > 0) or "
+       "mean goal's centre is traced back along -b from t = T to 0, and after the initial "
+       "refinements (before the wall layer) the cells within the support's width w of the "
+       "path (w = 2 r, or the rectangle's width across b) are halved across b until they "
+       "are at most w / goal_streak thick across it, so that the first DWR loop's "
+       "same-mesh adjoint can hold the goal's streak (where eps << |b| w the adjoint keeps "
+       "the support's width upstream). 0 = off. study.mode = dwr only."},
       {"discretization", "n_slabs", "5", m(&S::n_slabs), integer(1, 1000000),
        "Number of equal time slabs."},
       {"discretization", "mapping_degree", "0", m(&S::mapping_degree), integer(0, 4),

@@ -66,6 +66,8 @@ struct DiscretizationSection : Stabilization
   unsigned int initial_refinements = 2;
   /// a priori layer mesh at the outflow Dirichlet boundary (adaptivity/refinement.h)
   double wall_layer = 0.;
+  /// a priori mesh along the goals' upstream paths (adaptivity/refinement.h)
+  double goal_streak = 0.;
   unsigned int n_slabs = 5;
   /// MappingQ degree of the cells; 0 = auto_mapping_degree (space/space.h)
   unsigned int mapping_degree = 0;
@@ -131,6 +133,8 @@ struct AdaptivitySection : MarkingOptions
   double adjoint_delta0 = 0.1; ///< < 0: discretization.delta0
   /// the adjoint's delta_K <= h_min^2 / (eps q^4) (Stabilization::inverse_bound)
   bool adjoint_inverse_bound = true;
+  /// the adjoint carries the primal's crosswind term (discretization.crosswind0)
+  bool adjoint_crosswind = true;
   /// cells leaving the bounds by more than this fraction of their range are halved
   /// along b (cells_out_of_bounds); 0: off
   double bound_refinement = 0.;

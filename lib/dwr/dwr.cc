@@ -109,6 +109,10 @@ void AdaptiveLoop::run()
     print_run_line(std::cout, prm, *scene, q, goals, J_exact, has_exact,
                    mapping_degree(prm, tria));
     tria.refine_global(prm.discretization.initial_refinements);
+    if (prm.discretization.goal_streak > 0.)
+      std::cout << goal_streak_text(refine_goal_streak(tria, *scene, goals,
+                                                       prm.discretization.goal_streak))
+                << "\n";
     if (prm.discretization.wall_layer > 0.)
       std::cout << wall_layer_text(refine_wall_layer(tria, *scene,
                                                      prm.discretization.wall_layer))

@@ -185,7 +185,14 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
   const double delta0 = a.adjoint_stabilization == AdjointStabilization::none ? 0.
                         : a.adjoint_delta0 >= 0 ? std::min(a.adjoint_delta0, primal)
                                                 : primal;
-  return make_space_with(prm, scene, tria, degree, delta0, 1., a.adjoint_inverse_bound,
+  // the crosswind term is inconsistent: on an adjoint it spreads a goal's streak across b
+  // by |b| h_perp / 2 (s_K = 1 on the first loop), and the estimate weights the residual
+  // with that spread adjoint (doc/results.md, 'Hemker: the adjoint without the crosswind
+  // term')
+  Parameters without = prm;
+  if (!a.adjoint_crosswind)
+    without.discretization.crosswind0 = 0.;
+  return make_space_with(without, scene, tria, degree, delta0, 1., a.adjoint_inverse_bound,
                          a.adjoint_outflow == AdjointOutflow::goals ? goal_wall_rule(goals)
                                                                     : Space<2>::FaceRule());
 }
