@@ -120,9 +120,9 @@ struct GoalStreak
 /// then a fraction of its error, of either sign). Traces the centre of each point goal
 /// (radius > 0; w = 2 r) and mean goal (w = the rectangle's width across b) back along
 /// -b(x, t) from t = T to 0 (midpoint rule, 400 steps, until the path leaves the mesh),
-/// and halves, pass after pass, the active cells within w / 2 of the path (plus half the
-/// cell's diameter) across b, along each local axis that lies at least 45 degrees across
-/// b and spans more than w / factor across it. Throws InputError (naming the key) if a
+/// and halves, pass after pass, the active cells whose centre lies within (w + the cell's
+/// own width across b) / 2 of the path, along each local axis that lies at least 45
+/// degrees across b and spans more than w / factor across it. Throws InputError (naming the key) if a
 /// cell would need more than GoalStreak::max_passes halvings. factor <= 0: nothing.
 GoalStreak refine_goal_streak(dealii::Triangulation<2> &tria, const Scene<2> &scene,
                               const std::vector<GoalSpec> &goals, double factor);

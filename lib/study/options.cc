@@ -187,8 +187,8 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
                                                 : primal;
   // the crosswind term is inconsistent: on an adjoint it spreads a goal's streak across b
   // by |b| h_perp / 2 (s_K = 1 on the first loop), and the estimate weights the residual
-  // with that spread adjoint (doc/results.md, 'Hemker: the adjoint without the crosswind
-  // term')
+  // with that spread adjoint (doc/results.md, "Hemker: the goals' streaks and the
+  // adjoint's crosswind term")
   Parameters without = prm;
   if (!a.adjoint_crosswind)
     without.discretization.crosswind0 = 0.;
