@@ -311,6 +311,29 @@ TEST(AdjointCrosswind, HemkersFirstLoopEstimatesJ1WithoutTheTermInTheAdjoint)
   EXPECT_LT(r_without, 1.6);
 }
 
+// discretization.crosswind_first_solve on hemker.json's first loop: the factor s_K from a
+// march without the term instead of 1 everywhere. With s_K = 1 the wake's layer is smeared
+// and u_h(x_e1) integrates to J_1 = 3.4920; with the factor of the SUPG solution the
+// term acts only where that solution oscillates and J_1 = 2.4728 (reference 2.605;
+// measured 2026-12-05, regression tolerance 2e-3).
+TEST(CrosswindFirstSolve, HemkersFirstLoopTakesItsSwitchFromAMarchWithoutTheTerm)
+{
+  const auto J1 = [](const std::string &value)
+  {
+    const std::string dir = "regression_crosswind_first_" + value;
+    EXPECT_EQ(run("hemker.json", dir,
+                  "--set adaptivity.loops=1 --set adaptivity.tolerance=0 --set "
+                  "adaptivity.per_goal_estimates=true --set output.vtu_loops=0 --set "
+                  "discretization.crosswind_first_solve=" + value),
+              0);
+    const Table t = read_csv(dir + "/loops.csv");
+    EXPECT_EQ(t.size(), 1u);
+    return t.empty() ? 0. : 2.605 - t.at(0).at("err_u_xe1_I");
+  };
+  EXPECT_NEAR(J1("false"), 3.4920, 2e-3);
+  EXPECT_NEAR(J1("true"), 2.4728, 2e-3);
+}
+
 TEST(Budget, DofBudgetStopsCleanlyAndKeepsRows)
 {
   const std::string dir = "regression_budget";

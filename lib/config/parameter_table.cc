@@ -130,6 +130,14 @@ std::vector<Entry> discretization_entries()
        "and q = 2 s_K times that; where u_h oscillates s_K is near 1 either way "
        "(doc/method.md §3). Other values warn unless crosswind_form = residual and "
        "crosswind0 > 0."},
+      {"discretization", "crosswind_first_solve", "false", m(&S::crosswind_first_solve),
+       boolean,
+       "crosswind_form = residual in study.mode = dwr: the first loop, which has no "
+       "previous solution, takes its factor s_K from a primal march on its mesh without "
+       "the term (one more march) instead of s_K = 1 on every cell. With s_K = 1 the "
+       "first loop's u_h is smeared, its factor is small along the layers, and the second "
+       "loop oscillates there (doc/results.md, 'Hemker: the goals' streaks and the "
+       "adjoint's crosswind term'). Warns where the term is not residual-switched."},
       {"discretization", "supg_tau_factor", "1", m(&S::supg_tau_factor), real(0.),
        "Bound delta_K <= supg_tau_factor * tau_n on each slab (tau_n its length), the "
        "stability condition of SUPG whose test function also multiplies du/dt; 0 drops "

@@ -68,6 +68,8 @@ struct DiscretizationSection : Stabilization
   double wall_layer = 0.;
   /// a priori mesh along the goals' upstream paths (adaptivity/refinement.h)
   double goal_streak = 0.;
+  /// the first DWR loop's crosswind factor from a march without the term (dwr/dwr.cc)
+  bool crosswind_first_solve = false;
   unsigned int n_slabs = 5;
   /// MappingQ degree of the cells; 0 = auto_mapping_degree (space/space.h)
   unsigned int mapping_degree = 0;

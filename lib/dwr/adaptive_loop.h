@@ -134,6 +134,9 @@ private:
   /// its nearest ancestor's (1 where neither is known, e.g. on the first loop)
   std::map<CellId, double> crosswind_by_cell;
   std::vector<double> crosswind_scale_of_mesh() const;
+  /// discretization.crosswind_first_solve: the first loop's crosswind factor from a
+  /// primal march on its mesh without the term (instead of 1 on every cell).
+  void first_crosswind_from_a_plain_solve();
   Triangulation<2> tria;
   TimeMesh mesh;
   const TemporalBasis basis;

@@ -119,6 +119,8 @@ void AdaptiveLoop::run()
                 << "\n";
     print_loop_header(std::cout);
     base_mb = mpi_max(resident_memory_mb());
+    if (prm.discretization.crosswind_first_solve && residual_crosswind(prm))
+      first_crosswind_from_a_plain_solve();
     for (unsigned int loop = 1; loop <= prm.adaptivity.loops; ++loop)
     {
       LoopRow row;
@@ -341,6 +343,33 @@ void AdaptiveLoop::prepare_refinement(const LoopRow &row, const Space<2> &primal
     bound_cuts = cells_out_of_bounds<2>(
         primal.dof_handler(), slab_ends(), u_min, u_max, bound_fraction * (u_max - u_min),
         bound_cut_aspect, [this](const Point<2> &x) { return scene->convection(x, 0.); });
+}
+
+void AdaptiveLoop::first_crosswind_from_a_plain_solve()
+{
+  // s_K = 1 on the first loop smears u_h, and the factor of that smooth solution is small
+  // where the next loop then oscillates (doc/results.md, "Hemker: the goals' streaks and
+  // the adjoint's crosswind term"); SUPG alone shows where the term is needed
+  const auto space = make_space(prm, *scene, tria, prm.discretization.p);
+  space->set_crosswind_scale(std::vector<double>(tria.n_active_cells(), 0.));
+  MarchOptions opt;
+  opt.label = "loop 1 (the crosswind factor's march without the term)";
+  opt.progress = false;
+  opt.growth_limit = prm.discretization.growth_limit;
+  std::vector<Vector<double>> U;
+  {
+    SlabOperator<2> op(*space, basis, march_solver_options(1, "primal", false));
+    U = march_primal(*space, mesh, basis, op, opt);
+  }
+  std::vector<Vector<double>> ends(U.size());
+  for (std::size_t n = 0; n < U.size(); ++n)
+    combine_blocks(U[n], basis.right_trace(), ends[n]);
+  const std::vector<double> s =
+      crosswind_scale(*space, mesh.t, ends, prm.discretization.crosswind_exponent);
+  crosswind_by_cell.clear();
+  for (const auto &cell : tria.active_cell_iterators())
+    crosswind_by_cell[cell->id()] = s[cell->active_cell_index()];
+  release_free_memory();
 }
 
 std::vector<double> AdaptiveLoop::crosswind_scale_of_mesh() const

@@ -215,6 +215,11 @@ std::vector<std::string> dwr_warnings(const Parameters &prm)
   if (d.crosswind_form == CrosswindForm::residual && d.crosswind0 == 0.)
     w.push_back("discretization.crosswind_form = residual has no effect with "
                 "discretization.crosswind0 = 0 (the crosswind term is off)");
+  if (d.crosswind_first_solve &&
+      (d.crosswind_form != CrosswindForm::residual || d.crosswind0 == 0.))
+    w.push_back("discretization.crosswind_first_solve has no effect unless "
+                "discretization.crosswind_form = residual and discretization.crosswind0 > 0 "
+                "(it sets the first loop's residual switch)");
   if (d.crosswind_exponent != 1. &&
       (d.crosswind_form != CrosswindForm::residual || d.crosswind0 == 0.))
     w.push_back("discretization.crosswind_exponent has no effect unless "
