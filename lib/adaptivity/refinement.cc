@@ -400,18 +400,6 @@ struct Streak
   std::vector<double> width;
 };
 
-/// The width of a goal's support across the unit direction e: 2 r for a point goal, the
-/// rectangle's extent along e's normal for a mean goal; 0 for other kinds.
-double support_width(const GoalSpec &g, const Tensor<1, 2> &e)
-{
-  if (g.kind == "point" && g.radius > 0 && g.location.size() == 2)
-    return 2 * g.radius;
-  if (g.kind == "mean" && g.location.size() == 4)
-    return std::abs(e[1]) * (g.location[2] - g.location[0]) +
-           std::abs(e[0]) * (g.location[3] - g.location[1]);
-  return 0.;
-}
-
 bool inside_mesh(const Triangulation<2> &tria, const Point<2> &p)
 {
   for (const auto &cell : tria.active_cell_iterators())
@@ -424,13 +412,12 @@ bool inside_mesh(const Triangulation<2> &tria, const Point<2> &p)
 Streak trace_streak(const Triangulation<2> &tria, const Scene<2> &scene, const GoalSpec &g)
 {
   Streak s;
-  Point<2> x;
-  if (g.kind == "point" && g.radius > 0 && g.location.size() == 2)
-    x = Point<2>(g.location[0], g.location[1]);
-  else if (g.kind == "mean" && g.location.size() == 4)
-    x = Point<2>(0.5 * (g.location[0] + g.location[2]), 0.5 * (g.location[1] + g.location[3]));
-  else
+  std::array<double, 4> r;
+  if (!support_rectangle(g, r))
     return s;
+  // a point goal's centre as given (the square's mid-point can differ in the last bit)
+  Point<2> x = g.kind == "point" ? Point<2>(g.location[0], g.location[1])
+                                 : Point<2>(0.5 * (r[0] + r[2]), 0.5 * (r[1] + r[3]));
   constexpr unsigned int steps = 400;
   const double dt = scene.end_time / steps;
   double t = scene.end_time;
@@ -447,7 +434,7 @@ Streak trace_streak(const Triangulation<2> &tria, const Scene<2> &scene, const G
     const Tensor<1, 2> e = bm / bm.norm();
     x = x - dt * bm;
     s.along.push_back(e);
-    s.width.push_back(support_width(g, e));
+    s.width.push_back(support_extent(g, -e[1], e[0])); // across b: along e's normal
     s.path.push_back(x);
     if (!inside_mesh(tria, x))
       break;

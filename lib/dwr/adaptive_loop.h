@@ -137,6 +137,11 @@ private:
   /// discretization.crosswind_first_solve: the first loop's crosswind factor from a
   /// primal march on its mesh without the term (instead of 1 on every cell).
   void first_crosswind_from_a_plain_solve();
+  /// u_h at the right end of each slab, from the slabs' coefficient vectors U.
+  std::vector<Vector<double>> right_traces(const std::vector<Vector<double>> &U) const;
+  /// crosswind_by_cell from the crosswind factor of u_h (slab-end values `ends`) on the
+  /// current mesh.
+  void keep_crosswind_factor(const Space<2> &primal, const std::vector<Vector<double>> &ends);
   Triangulation<2> tria;
   TimeMesh mesh;
   const TemporalBasis basis;

@@ -312,21 +312,11 @@ void AdaptiveLoop::prepare_refinement(const LoopRow &row, const Space<2> &primal
   const auto slab_ends = [&]() -> const std::vector<Vector<double>> &
   {
     if (ends.empty())
-    {
-      ends.resize(U.size());
-      for (std::size_t n = 0; n < U.size(); ++n)
-        combine_blocks(U[n], basis.right_trace(), ends[n]);
-    }
+      ends = right_traces(U);
     return ends;
   };
   if (residual_crosswind(prm))
-  {
-    const std::vector<double> s = crosswind_scale(primal, mesh.t, slab_ends(),
-                                                  prm.discretization.crosswind_exponent);
-    crosswind_by_cell.clear();
-    for (const auto &cell : tria.active_cell_iterators())
-      crosswind_by_cell[cell->id()] = s[cell->active_cell_index()];
-  }
+    keep_crosswind_factor(primal, slab_ends());
   bound_cuts.clear();
   const double bound_fraction = prm.adaptivity.bound_refinement;
   if (bound_fraction <= 0)
@@ -361,15 +351,26 @@ void AdaptiveLoop::first_crosswind_from_a_plain_solve()
     SlabOperator<2> op(*space, basis, march_solver_options(1, "primal", false));
     U = march_primal(*space, mesh, basis, op, opt);
   }
+  keep_crosswind_factor(*space, right_traces(U));
+  release_free_memory();
+}
+
+std::vector<Vector<double>> AdaptiveLoop::right_traces(const std::vector<Vector<double>> &U) const
+{
   std::vector<Vector<double>> ends(U.size());
   for (std::size_t n = 0; n < U.size(); ++n)
     combine_blocks(U[n], basis.right_trace(), ends[n]);
+  return ends;
+}
+
+void AdaptiveLoop::keep_crosswind_factor(const Space<2> &primal,
+                                         const std::vector<Vector<double>> &ends)
+{
   const std::vector<double> s =
-      crosswind_scale(*space, mesh.t, ends, prm.discretization.crosswind_exponent);
+      crosswind_scale(primal, mesh.t, ends, prm.discretization.crosswind_exponent);
   crosswind_by_cell.clear();
   for (const auto &cell : tria.active_cell_iterators())
     crosswind_by_cell[cell->id()] = s[cell->active_cell_index()];
-  release_free_memory();
 }
 
 std::vector<double> AdaptiveLoop::crosswind_scale_of_mesh() const

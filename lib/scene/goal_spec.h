@@ -3,6 +3,7 @@
 // given by a scene as its default goals: plain data below the goal layer (goal/ builds
 // the functionals from it).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -24,6 +25,33 @@ struct GoalSpec
   /// uncertainty 0 where the value was given without one)
   double reference = std::nan(""), reference_uncertainty = std::nan("");
 };
+
+/// The rectangle x0, y0, x1, y1 that holds a goal's spatial support: a point goal's
+/// (radius > 0) disk's bounding square, a mean goal's rectangle. False for other kinds
+/// (flux goals, point values without a mollifier).
+inline bool support_rectangle(const GoalSpec &g, std::array<double, 4> &r)
+{
+  if (g.kind == "point" && g.radius > 0 && g.location.size() == 2)
+    r = {g.location[0] - g.radius, g.location[1] - g.radius, g.location[0] + g.radius,
+         g.location[1] + g.radius};
+  else if (g.kind == "mean" && g.location.size() == 4)
+    r = {g.location[0], g.location[1], g.location[2], g.location[3]};
+  else
+    return false;
+  return true;
+}
+
+/// The extent of a goal's support along the unit vector (nx, ny): 2 r for a point goal's
+/// disk, |nx| (x1 - x0) + |ny| (y1 - y0) for a mean goal's rectangle; 0 for other kinds.
+inline double support_extent(const GoalSpec &g, double nx, double ny)
+{
+  std::array<double, 4> r;
+  if (!support_rectangle(g, r))
+    return 0.;
+  if (g.kind == "point")
+    return 2 * g.radius;
+  return std::abs(nx) * (r[2] - r[0]) + std::abs(ny) * (r[3] - r[1]);
+}
 
 /// The goal with weight 1 (the per-goal values and estimates are unweighted).
 inline GoalSpec unweighted(const GoalSpec &goal)

@@ -142,26 +142,12 @@ Space<2>::FaceRule goal_wall_rule(const std::vector<GoalSpec> &goals)
     const auto box = cell.bounding_box();
     for (const GoalSpec &g : goals)
     {
-      dealii::BoundingBox<2> support;
-      double extent;
-      if (g.kind == "point" && g.radius > 0 && g.location.size() == 2)
-      {
-        const dealii::Point<2> c(g.location[0], g.location[1]);
-        const dealii::Tensor<1, 2> r({g.radius, g.radius});
-        support = dealii::BoundingBox<2>(
-            std::make_pair(dealii::Point<2>(c - r), dealii::Point<2>(c + r)));
-        extent = 2 * g.radius;
-      }
-      else if (g.kind == "mean" && g.location.size() == 4)
-      {
-        support = dealii::BoundingBox<2>(
-            std::make_pair(dealii::Point<2>(g.location[0], g.location[1]),
-                           dealii::Point<2>(g.location[2], g.location[3])));
-        extent = std::abs(n[0]) * (g.location[2] - g.location[0]) +
-                 std::abs(n[1]) * (g.location[3] - g.location[1]);
-      }
-      else
+      std::array<double, 4> r;
+      if (!support_rectangle(g, r))
         continue;
+      const dealii::BoundingBox<2> support(
+          std::make_pair(dealii::Point<2>(r[0], r[1]), dealii::Point<2>(r[2], r[3])));
+      const double extent = support_extent(g, n[0], n[1]);
       if (extent < thickness &&
           box.get_neighbor_type(support) != dealii::NeighborType::not_neighbors &&
           distance_to_box(face->vertex(0), face->vertex(1), support) <= extent)
