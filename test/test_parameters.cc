@@ -231,33 +231,33 @@ TEST(Parameters, AdjointOutflowFreesTheWallDofsUnderAThinGoal)
   strip.kind = "mean";
   strip.location = {0.98, 0.3, 1., 0.45};
   // one wall face, 3 Q2 DoFs on it; its end vertices are shared with constrained faces
-  EXPECT_EQ(free_wall_dofs("goals", strip), std::make_pair(std::array<unsigned int, 2>{0, 1},
+  EXPECT_EQ(free_wall_dofs("goals", strip), std::make_pair(std::array<unsigned int, 2>{{0, 1}},
                                                            true));
   EXPECT_EQ(free_wall_dofs("dirichlet", strip),
-            std::make_pair(std::array<unsigned int, 2>{0, 0}, false));
+            std::make_pair(std::array<unsigned int, 2>{{0, 0}}, false));
   EXPECT_EQ(free_wall_dofs("goals", strip, false),
-            std::make_pair(std::array<unsigned int, 2>{0, 0}, false));
+            std::make_pair(std::array<unsigned int, 2>{{0, 0}}, false));
   // the whole height: all 4 wall faces, all 9 DoFs on x = 1 (the corners' other faces
   // are Neumann)
   GoalSpec tall = strip;
   tall.location = {0.98, 0., 1., 1.};
-  EXPECT_EQ(free_wall_dofs("goals", tall).first, (std::array<unsigned int, 2>{0, 9}));
+  EXPECT_EQ(free_wall_dofs("goals", tall).first, (std::array<unsigned int, 2>{{0, 9}}));
   // a support thicker than the cell (0.4 against 0.25 across the wall): Dirichlet
   GoalSpec thick = strip;
   thick.location = {0.6, 0.3, 1., 0.45};
-  EXPECT_EQ(free_wall_dofs("goals", thick).first, (std::array<unsigned int, 2>{0, 0}));
+  EXPECT_EQ(free_wall_dofs("goals", thick).first, (std::array<unsigned int, 2>{{0, 0}}));
   // a point goal of radius 0.01 at the inflow wall: nothing (x = 0 is not an outflow)
   GoalSpec point;
   point.kind = "point";
   point.radius = 0.01;
   point.location = {0.005, 0.6};
-  EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{0, 0}));
+  EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{{0, 0}}));
   // at the outflow wall, inside the cell y in (0.5, 0.75): that face
   point.location = {0.995, 0.6};
-  EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{0, 1}));
+  EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{{0, 1}}));
   // in the same wall cell but 0.15 from the wall (more than its extent 0.02): nothing
   point.location = {0.85, 0.6};
-  EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{0, 0}));
+  EXPECT_EQ(free_wall_dofs("goals", point).first, (std::array<unsigned int, 2>{{0, 0}}));
   EXPECT_NE(error_of({"adaptivity.adjoint_outflow=natural"}), "");
 }
 

@@ -32,10 +32,10 @@ struct GoalSpec
 inline bool support_rectangle(const GoalSpec &g, std::array<double, 4> &r)
 {
   if (g.kind == "point" && g.radius > 0 && g.location.size() == 2)
-    r = {g.location[0] - g.radius, g.location[1] - g.radius, g.location[0] + g.radius,
-         g.location[1] + g.radius};
+    r = {{g.location[0] - g.radius, g.location[1] - g.radius, g.location[0] + g.radius,
+          g.location[1] + g.radius}};
   else if (g.kind == "mean" && g.location.size() == 4)
-    r = {g.location[0], g.location[1], g.location[2], g.location[3]};
+    r = {{g.location[0], g.location[1], g.location[2], g.location[3]}};
   else
     return false;
   return true;
