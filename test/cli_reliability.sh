@@ -261,14 +261,19 @@ fi
 # signed sum, 0.199 at loop 1). Each run: the last loop's measure is below the tolerance,
 # every earlier one is not; eta_abs is |eta_h,x| + |eta_h,y| + |eta_tau| (to the 8
 # digits of loops.csv) and >= |eta|. (The drift check is off here: tolerance_drift = 0.)
+# With output.vtu_loops = 4 the loop the tolerance stops after writes its VTU too.
 for measure in eta parts goals; do
   d=$tmp/tolerance_$measure
   expect 0 "stopped: tolerance" -- run "$src/config/moving_hump_paper.json" --output "$d" \
-    --set adaptivity.loops=12 --set adaptivity.tolerance=0.2 \
+    --set adaptivity.loops=12 --set adaptivity.tolerance=0.2 --set output.vtu_loops=4 \
     --set adaptivity.tolerance_measure=$measure --set adaptivity.tolerance_drift=0
   if ! /usr/bin/python3 - "$d/loops.csv" "$measure" "$d/summary.json" <<'PY'; then
-import csv, json, sys
+import csv, json, os, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
+vtu = sorted(f for f in os.listdir(os.path.dirname(sys.argv[1])) if f.endswith(".vtu"))
+want = sorted({f"loop-{l:04d}.vtu" for l in range(4, len(rows) + 1, 4)} | {f"loop-{len(rows):04d}.vtu"})
+if vtu != want:
+    sys.exit(f"FAIL: tolerance_measure = {sys.argv[2]}: VTU files {vtu}, want {want}")
 key = "eta_tauh" if sys.argv[2] == "eta" else "eta_abs"
 m = [abs(float(r[key])) for r in rows]
 if sys.argv[2] == "goals":  # the goals' weights are in summary.json

@@ -245,7 +245,8 @@ std::vector<Entry> output_entries()
        "Print one progress line per slab to stdout."},
       {"output", "vtu_loops", "1", m(&S::vtu_loops), integer(0, 1000000),
        "DWR: write VTU (mesh, u(T), indicators, aspect ratio) every k-th loop and at the "
-       "last loop; 0 writes none."},
+       "last loop (the loop cap's, or the loop the tolerance or the wall-time budget stops "
+       "after); 0 writes none."},
       {"output", "dump_slab_loop", "0", m(&S::dump_slab_loop), integer(0, 1000000),
        "DWR: in this loop write the first slab's system matrix K_n of the primal and of "
        "the adjoint (condensed as solved; the adjoint solves with K_n^T) in Matrix Market "

@@ -128,7 +128,7 @@ void AdaptiveLoop::run()
       Indicators<2> ind;
       if (!solve_and_estimate(row, ind))
         break;
-      const bool stop = stop_after(row);
+      const bool stop = stops_here;
       if (!stop)
       {
         Timer t;
@@ -214,7 +214,9 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
 
   Vector<double> uT;
   combine_blocks(U.back(), basis.right_trace(), uT);
-  write_loop_outputs(prm, *scene, probe_spec, row, primal, uT, ind, ar_cell, vtu_records);
+  stops_here = stop_after(row);
+  write_loop_outputs(prm, *scene, probe_spec, row, primal, uT, ind, ar_cell, stops_here,
+                     vtu_records);
   prepare_refinement(row, primal, U);
   return true;
 }

@@ -14,7 +14,7 @@ using namespace dealii;
 void write_loop_outputs(const Parameters &prm, const Scene<2> &scene,
                         const ProbeSpec<2> &probe_spec, LoopRow &row, const Space<2> &primal,
                         const Vector<double> &uT, const Indicators<2> &ind,
-                        const std::vector<double> &ar_cell,
+                        const std::vector<double> &ar_cell, bool last,
                         std::vector<std::pair<double, std::string>> &vtu_records)
 {
   const ProbeResult probes = evaluate_probes(primal.dof_handler(), primal.mapping(), uT,
@@ -28,8 +28,7 @@ void write_loop_outputs(const Parameters &prm, const Scene<2> &scene,
             Utilities::int_to_string(loop, 4) + ".csv",
         LineEvaluator<2>(primal.dof_handler(), primal.mapping(), uT, l.start, l.end),
         2 * prm.discretization.p);
-  if (!(prm.output.vtu_loops > 0 &&
-        (loop % prm.output.vtu_loops == 0 || loop == prm.adaptivity.loops)))
+  if (!(prm.output.vtu_loops > 0 && (loop % prm.output.vtu_loops == 0 || last)))
     return;
   Vector<double> ex(ar_cell.size()), ey(ar_cell.size()), et(ar_cell.size()),
       ar(ar_cell.begin(), ar_cell.end());
