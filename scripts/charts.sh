@@ -5,7 +5,7 @@
 #        --set adaptivity.max_memory_mb=23000 --set output.vtu_loops=2 --output results/hemker_30min_direct
 #   the bulk-marking Hemker setting of doc/history.md ("DWR: Hemker with bulk marking"), 30 loops
 #        -> results/hemker_bulk30
-#   anisodwr run config/hemker.json   -> results/hemker/ (the shipped setting; VTU of loops 10, 20, 30)
+#   anisodwr run config/hemker.json   -> results/hemker/ (the shipped setting; VTU of loops 10, 20, 25)
 #   anisodwr run config/convergence_{time_r0..r3,space_p1..p4}.json
 #   anisodwr run config/custom_mesh.json --set adaptivity.loops=8 --set output.vtu_loops=8
 # Charts whose inputs are missing are skipped with a message. Hemker meshes are drawn
@@ -30,7 +30,7 @@ chart mesh "$OUT/hemker_mesh_zoom.png" "$H" 12 u -1.6 0.2 -0.2 1.6
 chart mesh "$OUT/hemker_mesh_zoom_ar.png" "$H" 12 aspect_ratio -1.2 0.4 0.5 1.2
 chart mesh "$OUT/hemker_bulk_mesh.png" "$B" 30 aspect_ratio
 chart mesh "$OUT/hemker_bulk_mesh_zoom_ar.png" "$B" 30 aspect_ratio -1.2 0.4 0.5 1.2
-chart mesh "$OUT/hemker_shipped_mesh_zoom_ar.png" "$R/hemker" 30 aspect_ratio -1.2 0.4 0.5 1.2
+chart mesh "$OUT/hemker_shipped_mesh_zoom_ar.png" "$R/hemker" 20 aspect_ratio -1.2 0.4 0.5 1.2
 chart cutlines "$OUT/hemker_cutlines.png" "$H" 2,6,-1
 chart compare-cut "$OUT/hemker_galerkin_supg.png" normal -1 "$S/hemker_uniform_delta0=Galerkin" \
   "$S/hemker_uniform_delta0.1=SUPG 0.1" "$S/hemker_uniform_delta1=SUPG 1"

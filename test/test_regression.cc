@@ -5,10 +5,10 @@
 //    test/reference/moving_hump_paper.csv (regenerate: ANISODWR_WRITE_REFERENCE=1);
 //  - moving_hump (the default config), first 8 loops: the same, plus the goals' errors
 //    (test/reference/moving_hump.csv);
-//  - hemker (10 loops), hemker_count and hemker_paper (3 loops each): N_space (196 at loop 1) and N_t exactly; J_1, J_2, eta
-//  values,
-//    layer width, over-/undershoot to 1e-6 relative (test/reference/hemker.csv); the
-//    cut-line CSVs are written;
+//  - hemker (10 loops), hemker_count and hemker_paper (3 loops each): N_space (14,425,
+//    196 and 196 at loop 1) and N_t exactly; J_1, J_2, eta values, layer width,
+//    over-/undershoot to 1e-6 relative (test/reference/hemker.csv); the cut-line CSVs
+//    are written;
 //  - boundary_layer: the layer-normal indicator eta_h,x dominates and anisotropic
 //    refinement produces thin cells (ar_max >= 16 by loop 6);
 //  - a DoF budget stops the loop cleanly and keeps the finished rows;
@@ -164,7 +164,8 @@ void check_hemker(const std::string &config, const std::string &ref, unsigned in
   ASSERT_EQ(got.size(), loops);
   ASSERT_EQ(probes.size(), loops);
   EXPECT_EQ(got[0].at("N_space"), first_n_space)
-      << "doc/method.md §10: two global refinements give 196 Q1 DoFs, four 2,704";
+      << "doc/method.md §10: two global refinements give 196 Q1 DoFs, four 2,704, four "
+         "and the wall layer 14,425";
   for (std::size_t l = 0; l < got.size(); ++l)
   {
     got[l].insert(probes[l].begin(), probes[l].end());
@@ -186,9 +187,9 @@ void check_hemker(const std::string &config, const std::string &ref, unsigned in
 
 TEST(Regression, HemkerFirstTenLoops)
 {
-  // config/hemker.json (four global refinements, delta0 = 1, bulk marking, theta_h =
-  // 0.7): loops 1-10, up to N_space ~3,800
-  check_hemker("hemker.json", "hemker", 10, 2704);
+  // config/hemker.json (four global refinements and the wall layer, delta0 = 1, bulk
+  // marking, theta_h = 0.7): loops 1-10, up to N_space ~18,400
+  check_hemker("hemker.json", "hemker", 10, 14425);
 }
 
 TEST(Regression, HemkerCountFirstThreeLoops)
@@ -283,12 +284,14 @@ TEST(AdjointOutflow, GoalInsideTheOutflowLayerIsEstimatedOnCoarseMeshes)
 
 namespace
 {
-/// hemker.json's first loop with per-goal estimates and `--set KEY=VALUE`: its loops.csv row.
+/// hemker.json's first loop without its wall layer (2,704 DoFs), with per-goal estimates
+/// and `--set KEY=VALUE`: its loops.csv row.
 std::map<std::string, double> hemker_first_loop(const std::string &key, const std::string &value)
 {
   const std::string dir = "regression_first_loop_" + key + "_" + value;
   EXPECT_EQ(run("hemker.json", dir,
                 "--set adaptivity.loops=1 --set adaptivity.tolerance=0 --set "
+                "discretization.wall_layer=0 --set "
                 "adaptivity.per_goal_estimates=true --set output.vtu_loops=0 --set " +
                     key + "=" + value),
             0);
@@ -298,11 +301,12 @@ std::map<std::string, double> hemker_first_loop(const std::string &key, const st
 }
 } // namespace
 
-// hemker.json's first loop: the crosswind term's switch is 1 everywhere, and the adjoint
-// that carries it spreads J_1's pulse (0.02 wide) across b by |b| h_perp / 2 = 0.085: J_1's
-// own estimate is then 0.12 of its error (e_1 = -0.887). Without the term in the adjoint
-// it is 1.25 of it (doc/results.md, "Hemker: the goals' streaks and the adjoint's
-// crosswind term"). The primal, and so J_1, is the same either way.
+// hemker.json's first loop (without its wall layer): the crosswind term's switch is 1
+// everywhere, and the adjoint that carries it spreads J_1's pulse (0.02 wide) across b by
+// |b| h_perp / 2 = 0.085: J_1's own estimate is then 0.12 of its error (e_1 = -0.887).
+// Without the term in the adjoint it is 1.25 of it (doc/results.md, "Hemker: the goals'
+// streaks and the adjoint's crosswind term"). The primal, and so J_1, is the same either
+// way.
 TEST(AdjointCrosswind, HemkersFirstLoopEstimatesJ1WithoutTheTermInTheAdjoint)
 {
   const auto with = hemker_first_loop("adaptivity.adjoint_crosswind", "true"),
@@ -317,11 +321,11 @@ TEST(AdjointCrosswind, HemkersFirstLoopEstimatesJ1WithoutTheTermInTheAdjoint)
   EXPECT_LT(r_without, 1.6);
 }
 
-// discretization.crosswind_first_solve on hemker.json's first loop: the factor s_K from a
-// march without the term instead of 1 everywhere. With s_K = 1 the wake's layer is smeared
-// and u_h(x_e1) integrates to J_1 = 3.4920; with the factor of the SUPG solution the
-// term acts only where that solution oscillates and J_1 = 2.4728 (reference 2.605;
-// measured 2026-12-05, regression tolerance 2e-3).
+// discretization.crosswind_first_solve on hemker.json's first loop (no wall layer): the
+// factor s_K from a march without the term instead of 1 everywhere. With s_K = 1 the
+// wake's layer is smeared and u_h(x_e1) integrates to J_1 = 3.4920; with the factor of
+// the SUPG solution the term acts only where that solution oscillates and J_1 = 2.4728
+// (reference 2.605; measured 2026-12-05, regression tolerance 2e-3).
 TEST(CrosswindFirstSolve, HemkersFirstLoopTakesItsSwitchFromAMarchWithoutTheTerm)
 {
   const auto J1 = [](const std::string &value)
