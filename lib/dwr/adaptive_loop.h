@@ -54,10 +54,9 @@ public:
 
 private:
   /// The loop's solves, goal values and indicators on the current meshes (ind), whether
-  /// the run stops after it (stops_here, from stop_after), and its outputs (probes, cut
-  /// lines, VTU; a stopping loop writes its VTU). False if the DoF budget stops the run
-  /// first.
-  bool solve_and_estimate(LoopRow &row, Indicators<2> &ind);
+  /// the run stops after it (stop, from stop_after), and its outputs (probes, cut lines,
+  /// VTU; a stopping loop writes its VTU). False if the DoF budget stops the run first.
+  bool solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &stop);
   /// N_space, N_t, N_tot of the loop into row; false (with stop_reason) if N_tot exceeds
   /// adaptivity.max_dofs.
   bool within_dof_budget(LoopRow &row, const Space<2> &primal);
@@ -153,7 +152,6 @@ private:
   std::vector<LoopRow> rows;
   std::vector<std::pair<double, std::string>> vtu_records;
   std::string stop_reason = "max loops";
-  bool stops_here = false; ///< set by solve_and_estimate: the run ends after this loop
   /// solver.type = auto: the last solver kind printed per problem (primal, adjoint)
   int solver_kind_before[2] = {-1, -1}; ///< 0 coupled direct, 1 iterative, 2 modes
   void report_auto_choice(unsigned int loop, unsigned int problem, const SlabOperator<2> &op);

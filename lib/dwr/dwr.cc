@@ -126,9 +126,9 @@ void AdaptiveLoop::run()
       LoopRow row;
       row.loop = loop;
       Indicators<2> ind;
-      if (!solve_and_estimate(row, ind))
+      bool stop = false;
+      if (!solve_and_estimate(row, ind, stop))
         break;
-      const bool stop = stops_here;
       if (!stop)
       {
         Timer t;
@@ -169,7 +169,7 @@ void AdaptiveLoop::run()
             << " (stopped: " << stop_reason << ")\n";
 }
 
-bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
+bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &stop)
 {
   // (freed pages go back to the system between the phases: the next phase's
   // factorizations map fresh memory and would sit beside them; memory_estimate.h)
@@ -214,8 +214,8 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind)
 
   Vector<double> uT;
   combine_blocks(U.back(), basis.right_trace(), uT);
-  stops_here = stop_after(row);
-  write_loop_outputs(prm, *scene, probe_spec, row, primal, uT, ind, ar_cell, stops_here,
+  stop = stop_after(row);
+  write_loop_outputs(prm, *scene, probe_spec, row, primal, uT, ind, ar_cell, stop,
                      vtu_records);
   prepare_refinement(row, primal, U);
   return true;

@@ -18,8 +18,9 @@ namespace anisodwr
 {
 /// Probes of u(T) into row (row.probes, u_min, u_max), the cut lines of probe_spec to
 /// cut_<line>_loop-NNNN.csv, and in every output.vtu_loops-th loop and the last (`last`:
-/// the loop cap, the tolerance or the wall-time budget stops after it) the VTU of u(T) with the indicators and aspect ratios per cell (record added to
-/// vtu_records, loops.pvd rewritten).
+/// the loop cap, the tolerance or the wall-time budget stops after it) the VTU of u(T)
+/// with the indicators and aspect ratios per cell (record added to vtu_records,
+/// loops.pvd rewritten).
 void write_loop_outputs(const Parameters &prm, const Scene<2> &scene,
                         const ProbeSpec<2> &probe_spec, LoopRow &row, const Space<2> &primal,
                         const dealii::Vector<double> &uT, const Indicators<2> &ind,
