@@ -1,6 +1,7 @@
 #pragma once
 // The choice-valued options of the adaptivity section (adaptivity.mode, .marking,
-// .time_indicator, .space_indicator, .adjoint_stabilization, .tolerance_measure), each
+// .time_indicator, .space_indicator, .adjoint_stabilization, .tolerance_measure,
+// .goal_estimate), each
 // with its name table (base/choice.h); light, so that config/parameters.h can hold them.
 #include "base/choice.h"
 
@@ -35,6 +36,27 @@ enum class SpaceIndicator
   /// no lift of u (exact up to z ~ z_tau h and the directional split)
   primal_residual
 };
+
+/// adaptivity.goal_estimate: what each goal's own estimate (eta_<goal>) is.
+enum class GoalEstimate
+{
+  /// the goal's DWR indicators summed: eta_h,x + eta_h,y + eta_tau from its own adjoint
+  dwr,
+  /// J_i(u_q) - J_i(u_h) + eta_tau,i: u_q the primal solved once more in the adjoint's
+  /// degree q on the loop's mesh and slabs, with the same stabilization. For a
+  /// Galerkin primal with conforming weights it equals the DWR's spatial sum (the
+  /// adjoint identity rho(u_h)(z_q) = J(u_q) - J(u_h)); with SUPG and a differently
+  /// stabilized adjoint it does not, and the DWR sum then carries the two
+  /// stabilizations' mismatch. The DWR indicators still mark the cells.
+  enriched
+};
+
+inline const std::vector<Named<GoalEstimate>> &names(GoalEstimate)
+{
+  static const std::vector<Named<GoalEstimate>> table{{GoalEstimate::dwr, "dwr"},
+                                                      {GoalEstimate::enriched, "enriched"}};
+  return table;
+}
 
 /// adaptivity.tolerance_measure: what adaptivity.tolerance is compared with.
 enum class ToleranceMeasure

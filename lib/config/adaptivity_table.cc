@@ -114,6 +114,17 @@ std::vector<Entry> adaptivity_entries()
        "indicators are then the weighted sum of the goals' own; costs one adjoint solve "
        "per goal and each goal's own terms in the estimator (one pass over the cells: "
        "the terms of u_h alone are formed once for all goals)."},
+      {"adaptivity", "goal_estimate", "dwr", m(&S::goal_estimate), by_name,
+       "Each goal's own estimate (loops.csv eta_<goal>, I_eff_<goal>; the tolerance "
+       "measures goals and parts and the drift use it). dwr: the goal's DWR indicators "
+       "summed; enriched: J_i(u_q) - J_i(u_h) + eta_tau,i, u_q the primal solved once "
+       "more in the adjoint's degree q on the loop's mesh and slabs with the same "
+       "stabilization (loops.csv J_hi_<goal>; one more primal march per loop, after the "
+       "adjoint's factors are freed). With SUPG the DWR sum carries the mismatch of the "
+       "primal's and the adjoint's stabilization, the enriched estimate does not (doc/"
+       "results.md, 'Goal estimates from the enriched primal'); without stabilization "
+       "the two agree. Implies per_goal_estimates; the DWR indicators still mark the "
+       "cells and the combined columns eta_h, I_eff stay theirs."},
       {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
        "March the adjoint(s) in a second thread while the primal marches (with "
        "goal.weights = auto and one adjoint for the weighted goal: assemble and "

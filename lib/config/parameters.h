@@ -126,6 +126,7 @@ struct AdaptivitySection : MarkingOptions
   double max_wall_time = 0.; ///< s; 0: no budget
   TimeIndicator time_indicator = TimeIndicator::higher_order;
   bool per_goal_estimates = false;
+  GoalEstimate goal_estimate = GoalEstimate::dwr;
   bool measure_time_error = false;
   bool concurrent_marches = true;
   unsigned int adjoint_degree = 0;

@@ -97,6 +97,15 @@ private:
                       const std::vector<Vector<double>> &U);
   /// The weights of the goals into row, and the weighted J and J_exact.
   void weigh_goals(LoopRow &row) const;
+  /// The adjoint operator's figures into row (solver choice, factor size) and its
+  /// factors and matrices freed; nothing if adj.op is already empty.
+  void release_adjoint(LoopRow &row, AdjointMarch &adj);
+  /// adaptivity.goal_estimate = enriched: the primal marched once more in the adjoint's
+  /// degree q on the loop's meshes (the crosswind factor cw_scale), its goal values
+  /// into row.J_goal_hi (estimate_by_goal forms the goals' estimates from them); its
+  /// time goes to t_estimate.
+  void march_enriched(LoopRow &row, const std::vector<double> &cw_scale,
+                      const MarchOptions &opt) const;
   /// The indicators ind of the weighted goal from the adjoint march: one adjoint for
   /// J_w = sum_i w_i J_i, or (by_goal) one per goal and ind = sum_i w_i ind_i, with
   /// goal.weights = estimate w_i = sign(eta_i) / max(|J_i(u_h)|, 1e-12). Sets t_adjoint,
@@ -122,6 +131,8 @@ private:
   /// one adjoint and one estimate per goal, the combined indicators their weighted sum
   /// (goal.weights = estimate or adaptivity.per_goal_estimates)
   const bool by_goal;
+  /// adaptivity.goal_estimate = enriched (implies by_goal)
+  const bool enriched;
   /// "exact" (the scene's exact solution), "goal.reference" or "none": where J_exact,
   /// and with it the error columns and I_eff, come from
   const std::string error_reference;

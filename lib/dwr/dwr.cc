@@ -64,7 +64,9 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
       auto_weights(prm.goal.weights == "auto"),
       estimate_weights(prm.goal.weights == "estimate"),
       by_goal(estimate_weights || prm.adaptivity.per_goal_estimates ||
-              prm.adaptivity.tolerance_measure == ToleranceMeasure::goals),
+              prm.adaptivity.tolerance_measure == ToleranceMeasure::goals ||
+              prm.adaptivity.goal_estimate == GoalEstimate::enriched),
+      enriched(prm.adaptivity.goal_estimate == GoalEstimate::enriched),
       error_reference(scene->exact()                      ? "exact"
                       : std::isnan(goals.front().reference) ? "none"
                                                             : "goal.reference"),
@@ -196,6 +198,12 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &st
   const HigherOrderPrimal *hi_ptr = U_hi.empty() ? nullptr : &hi;
   if (!row.concurrent)
     adj = march_adjoints(row.loop, adjoint, goals, opt, false);
+  if (enriched)
+  {
+    // (after the adjoint's factors: the two degree-q factorizations are not held at once)
+    release_adjoint(row, adj);
+    march_enriched(row, cw_scale, opt);
+  }
   estimate_from(row, ind, primal, adjoint, U, hi_ptr, std::move(adj));
   check_finite(row, ind, opt.label);
   if (prm.adaptivity.measure_time_error)

@@ -4,6 +4,7 @@
 #include "dwr/time_error.h"
 
 #include "adaptivity/lifted_goal.h"
+#include "base/errors.h"
 #include "base/mpi.h"
 #include "slab/adjoint_march.h"
 
@@ -94,13 +95,9 @@ void AdaptiveLoop::estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2
                                  const std::vector<Vector<double>> &U,
                                  const HigherOrderPrimal *hi, AdjointMarch adj)
 {
-  row.t_adjoint = adj.wall;
-  report_auto_choice(row.loop, 1, *adj.op);
-  row.lu_adjoint_mb = adj.op->timings().factor_mb;
   // The estimator solves no slab system: the adjoint's factors and matrices go before
   // it runs.
-  adj.op.reset();
-  release_free_memory();
+  release_adjoint(row, adj);
   if (by_goal)
   {
     estimate_by_goal(row, ind, primal, adjoint, std::move(adj.Z), U, hi);
@@ -111,6 +108,41 @@ void AdaptiveLoop::estimate_from(LoopRow &row, Indicators<2> &ind, const Space<2
                  prm.adaptivity.time_indicator, hi, prm.adaptivity.space_indicator,
                  data_quadrature(prm.adaptivity), prm.adaptivity.conforming_weights);
   row.t_estimate = t.wall_time();
+}
+
+void AdaptiveLoop::release_adjoint(LoopRow &row, AdjointMarch &adj)
+{
+  if (!adj.op)
+    return;
+  row.t_adjoint = adj.wall;
+  report_auto_choice(row.loop, 1, *adj.op);
+  row.lu_adjoint_mb = adj.op->timings().factor_mb;
+  adj.op.reset();
+  release_free_memory();
+}
+
+void AdaptiveLoop::march_enriched(LoopRow &row, const std::vector<double> &cw_scale,
+                                  const MarchOptions &opt) const
+{
+  Timer t;
+  const auto space = make_space(prm, *scene, tria, q);
+  space->set_crosswind_scale(cw_scale);
+  MarchOptions o = opt;
+  o.label += " (primal of degree " + std::to_string(q) + ", adaptivity.goal_estimate)";
+  std::vector<Vector<double>> Uq;
+  {
+    SlabOperator<2> op(*space, basis, march_solver_options(0, "", false));
+    Uq = march_primal(*space, mesh, basis, op, o);
+  }
+  row.J_goal_hi.clear();
+  for (const GoalSpec &goal : goals)
+    row.J_goal_hi.push_back(goal_value(*space, goal, mesh, basis, Uq));
+  for (const double J : row.J_goal_hi)
+    if (!std::isfinite(J))
+      throw NumericalError(o.label + ": a goal value J(u_q) is NaN/Inf");
+  Uq.clear();
+  release_free_memory();
+  row.t_estimate += t.wall_time();
 }
 
 void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
@@ -139,6 +171,8 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   {
     const Indicators<2> &part = parts[i];
     add_goal_estimate(row, part);
+    if (enriched) // the spatial part from the primal of degree q, the temporal the DWR's
+      row.eta_goal[i] = row.J_goal_hi[i] - row.J_goal[i] + row.eta_goal_parts[i][2];
     if (estimate_weights)
     {
       const double one = goal_of_one(primal, unweighted(goals[i])) *
@@ -151,7 +185,7 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   }
   if (estimate_weights)
     weigh_goals(row);
-  row.t_estimate = t.wall_time();
+  row.t_estimate += t.wall_time(); // (after march_enriched's time)
 }
 
 void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,

@@ -69,6 +69,8 @@ std::vector<double> LoopRow::all_values() const
             no_lift, lu_primal_mb, lu_adjoint_mb, concurrent, eta_h_split_rest,
             eta_parts_abs(), hanging_gap, eta_h_data, double(bound_cuts), eta_drift,
             eta_h_quad});
+  for (std::size_t g = 0; g < J_goal.size(); ++g)
+    v.push_back(g < J_goal_hi.size() ? J_goal_hi[g] : nan);
   return v;
 }
 
@@ -125,6 +127,14 @@ double abs_parts(const LoopRow &row, unsigned int first, unsigned int last)
 
 double LoopRow::eta_space_abs() const
 {
+  // adaptivity.goal_estimate = enriched: each goal's spatial estimate is one number
+  if (!J_goal_hi.empty() && J_goal_hi.size() == weights.size())
+  {
+    double sum = 0;
+    for (std::size_t g = 0; g < weights.size(); ++g)
+      sum += std::abs(weights[g] * (J_goal_hi[g] - J_goal[g]));
+    return sum;
+  }
   return abs_parts(*this, 0, 2);
 }
 
@@ -149,7 +159,9 @@ double LoopRow::eta_time_abs() const
 /// LoopRow::eta_parts_abs(), the mesh's hanging-node mismatch (max_hanging_gap) and the
 /// Dirichlet data's share of eta_h (Indicators::eta_h_data), the cells that
 /// adaptivity.bound_refinement cut, the corrected goal values' drift (eta_drift) and
-/// the primal's data quadrature error in eta_h (Indicators::eta_h_quad).
+/// the primal's data quadrature error in eta_h (Indicators::eta_h_quad), and each goal's
+/// value from the primal of the adjoint's degree (J_hi_<goal>; adaptivity.goal_estimate
+/// = enriched, else empty).
 std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names)
 {
   auto c = columns;
@@ -164,6 +176,8 @@ std::vector<std::string> loop_columns(const std::vector<std::string> &goal_names
             "lu_adjoint_mb", "concurrent", "eta_h_split_rest", "eta_abs",
             "hanging_gap", "eta_h_data", "bound_cuts", "eta_drift",
             "eta_h_quad"});
+  for (const auto &name : goal_names)
+    c.push_back("J_hi_" + name);
   return c;
 }
 

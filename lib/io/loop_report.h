@@ -52,6 +52,9 @@ struct LoopRow
   /// the same goals' parts eta_h,x, eta_h,y, eta_tau (signed), so that cancellation
   /// between them is visible per goal
   std::vector<std::array<double, 3>> eta_goal_parts;
+  /// adaptivity.goal_estimate = enriched: J_i of the primal marched in the adjoint's
+  /// degree q (empty otherwise); eta_goal's spatial part is J_goal_hi - J_goal
+  std::vector<double> J_goal_hi;
   /// the cells of the refinement that follows this loop (zeros on the last): marked,
   /// cut in x only, in y only, in both, flagged or extended by the closure
   std::array<unsigned int, 5> marking{};
@@ -71,7 +74,9 @@ struct LoopRow
   /// below |eta_tau h| (eta_tau h = sum_i w_i eta_i); loops.csv column eta_abs.
   double eta_parts_abs() const;
   /// The spatial and the temporal share of eta_parts_abs(): |eta_h,x| + |eta_h,y| and
-  /// |eta_tau|, per goal weighted by |w_i| when every goal has its own parts.
+  /// |eta_tau|, per goal weighted by |w_i| when every goal has its own parts; with
+  /// J_goal_hi (adaptivity.goal_estimate = enriched) the spatial share is
+  /// sum_i |w_i (J_goal_hi_i - J_goal_i)|.
   double eta_space_abs() const;
   /// max_i |w_i eta_i| over the goals' own estimates (eta_goal), or |eta_tau h| of the
   /// weighted goal where the goals have none; adaptivity.tolerance_measure = goals.
