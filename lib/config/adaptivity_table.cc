@@ -119,12 +119,16 @@ std::vector<Entry> adaptivity_entries()
        "measures goals and parts and the drift use it). dwr: the goal's DWR indicators "
        "summed; enriched: J_i(u_q) - J_i(u_h) + eta_tau,i, u_q the primal solved once "
        "more in the adjoint's degree q on the loop's mesh and slabs with the same "
-       "stabilization (loops.csv J_hi_<goal>; one more primal march per loop, after the "
-       "adjoint's factors are freed). With SUPG the DWR sum carries the mismatch of the "
-       "primal's and the adjoint's stabilization, the enriched estimate does not (doc/"
-       "results.md, 'Goal estimates from the enriched primal'); without stabilization "
-       "the two agree. Implies per_goal_estimates; the DWR indicators still mark the "
-       "cells and the combined columns eta_h, I_eff stay theirs."},
+       "stabilization, delta_K within the inverse bound where adjoint_inverse_bound is "
+       "on (loops.csv J_hi_<goal>; one more primal march per loop, after the adjoint's "
+       "factors are freed; where it fails, e.g. grows, a warning and that loop keeps "
+       "the DWR's estimates). Without stabilization the two agree; with SUPG the DWR "
+       "sum carries the mismatch of the primal's and the adjoint's stabilization, the "
+       "enriched estimate needs the primal of degree q to be much closer to u than "
+       "u_h is (doc/results.md, 'Goal estimates from the enriched primal': better on "
+       "Hemker, worse where the layer is unresolved and the goal smooth). Implies "
+       "per_goal_estimates; the DWR indicators still mark the cells and the combined "
+       "columns eta_h, I_eff stay theirs."},
       {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
        "March the adjoint(s) in a second thread while the primal marches (with "
        "goal.weights = auto and one adjoint for the weighted goal: assemble and "

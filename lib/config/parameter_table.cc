@@ -136,7 +136,7 @@ std::vector<Entry> discretization_entries()
        "previous solution, takes its factor s_K from a primal march on its mesh without "
        "the term (one more march) instead of s_K = 1 on every cell. With s_K = 1 the "
        "first loop's u_h is smeared, its factor is small along the layers, and the second "
-       "loop oscillates there (doc/results.md, 'Hemker: the goals' streaks and the "
+       "loop oscillates there (doc/history.md, 'Hemker: the goals' streaks and the "
        "adjoint's crosswind term'). Warns where the term is not residual-switched."},
       {"discretization", "supg_tau_factor", "1", m(&S::supg_tau_factor), real(0.),
        "Bound delta_K <= supg_tau_factor * tau_n on each slab (tau_n its length), the "

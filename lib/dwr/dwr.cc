@@ -348,7 +348,7 @@ void AdaptiveLoop::prepare_refinement(const LoopRow &row, const Space<2> &primal
 void AdaptiveLoop::first_crosswind_from_a_plain_solve()
 {
   // s_K = 1 on the first loop smears u_h, and the factor of that smooth solution is small
-  // where the next loop then oscillates (doc/results.md, "Hemker: the goals' streaks and
+  // where the next loop then oscillates (doc/history.md, "Hemker: the goals' streaks and
   // the adjoint's crosswind term"); SUPG alone shows where the term is needed
   const auto space = make_space(prm, *scene, tria, prm.discretization.p);
   space->set_crosswind_scale(std::vector<double>(tria.n_active_cells(), 0.));

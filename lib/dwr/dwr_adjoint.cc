@@ -125,22 +125,33 @@ void AdaptiveLoop::march_enriched(LoopRow &row, const std::vector<double> &cw_sc
                                   const MarchOptions &opt) const
 {
   Timer t;
-  const auto space = make_space(prm, *scene, tria, q);
+  const auto space = make_enriched_space(prm, *scene, tria, q);
   space->set_crosswind_scale(cw_scale);
   MarchOptions o = opt;
   o.label += " (primal of degree " + std::to_string(q) + ", adaptivity.goal_estimate)";
-  std::vector<Vector<double>> Uq;
-  {
-    SlabOperator<2> op(*space, basis, march_solver_options(0, "", false));
-    Uq = march_primal(*space, mesh, basis, op, o);
-  }
   row.J_goal_hi.clear();
-  for (const GoalSpec &goal : goals)
-    row.J_goal_hi.push_back(goal_value(*space, goal, mesh, basis, Uq));
-  for (const double J : row.J_goal_hi)
-    if (!std::isfinite(J))
-      throw NumericalError(o.label + ": a goal value J(u_q) is NaN/Inf");
-  Uq.clear();
+  try
+  {
+    std::vector<Vector<double>> Uq;
+    {
+      SlabOperator<2> op(*space, basis, march_solver_options(0, "", false));
+      Uq = march_primal(*space, mesh, basis, op, o);
+    }
+    for (const GoalSpec &goal : goals)
+      row.J_goal_hi.push_back(goal_value(*space, goal, mesh, basis, Uq));
+    for (const double J : row.J_goal_hi)
+      if (!std::isfinite(J))
+        throw NumericalError(o.label + ": a goal value J(u_q) is NaN/Inf");
+  }
+  catch (const NumericalError &e)
+  {
+    // a diagnostic solve: the loop goes on with the DWR's goal estimates (J_hi_<goal>
+    // empty in loops.csv)
+    row.J_goal_hi.clear();
+    if (writes_output())
+      std::cout << "warning: " << e.what()
+                << "; this loop's goal estimates are the DWR's" << std::endl;
+  }
   release_free_memory();
   row.t_estimate += t.wall_time();
 }
@@ -171,7 +182,7 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   {
     const Indicators<2> &part = parts[i];
     add_goal_estimate(row, part);
-    if (enriched) // the spatial part from the primal of degree q, the temporal the DWR's
+    if (!row.J_goal_hi.empty()) // enriched: the spatial part from the primal of degree q
       row.eta_goal[i] = row.J_goal_hi[i] - row.J_goal[i] + row.eta_goal_parts[i][2];
     if (estimate_weights)
     {

@@ -96,6 +96,14 @@ std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scen
   return make_space_with(prm, scene, tria, degree, prm.discretization.delta0, tau_scale);
 }
 
+std::unique_ptr<Space<2>> make_enriched_space(const Parameters &prm, const Scene<2> &scene,
+                                              const dealii::Triangulation<2, 2> &tria,
+                                              unsigned int degree)
+{
+  return make_space_with(prm, scene, tria, degree, prm.discretization.delta0, 1.,
+                         prm.adaptivity.adjoint_inverse_bound);
+}
+
 namespace
 {
 /// The distance from the segment [a, b] to the box (convex along the segment: a ternary
@@ -173,7 +181,7 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
                                                 : primal;
   // the crosswind term is inconsistent: on an adjoint it spreads a goal's streak across b
   // by |b| h_perp / 2 (s_K = 1 on the first loop), and the estimate weights the residual
-  // with that spread adjoint (doc/results.md, "Hemker: the goals' streaks and the
+  // with that spread adjoint (doc/history.md, "Hemker: the goals' streaks and the
   // adjoint's crosswind term")
   Parameters without = prm;
   if (!a.adjoint_crosswind)

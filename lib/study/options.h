@@ -46,6 +46,13 @@ unsigned int mapping_degree(const Parameters &prm, const dealii::Triangulation<2
 std::unique_ptr<Space<2>> make_space(const Parameters &prm, const Scene<2> &scene,
                                      const dealii::Triangulation<2, 2> &tria,
                                      unsigned int degree, double tau_scale = 1.);
+/// The primal of adaptivity.goal_estimate = enriched: as make_space in the adjoint's
+/// degree, with delta_K within the inverse bound h_min^2 / (eps q^4) where
+/// adaptivity.adjoint_inverse_bound is on (SUPG's delta of degree p can make degree q
+/// unstable on thin cells, as it would the adjoint).
+std::unique_ptr<Space<2>> make_enriched_space(const Parameters &prm, const Scene<2> &scene,
+                                              const dealii::Triangulation<2, 2> &tria,
+                                              unsigned int degree);
 /// The adjoint's space: as make_space, with the delta0 of the adaptivity section
 /// (adjoint_stabilization, adjoint_delta0) and, with adjoint_outflow = goals, the outflow
 /// Dirichlet faces natural where a goal's support lies within the wall cell.
