@@ -6,7 +6,8 @@
 # directional split's remainder (eta_h_split_rest) on every loop, hanging nodes
 # included (loops 2-4), for dG(0) and dG(1). With SUPG the two differ (the adjoint's
 # delta0 is not the primal's), and eta_<goal> must be J_hi - J + eta_tau_<goal>.
-# A loop whose degree-q primal fails keeps the DWR's estimates, with a warning.
+# A loop whose degree-q primal fails keeps the DWR's estimates, with a warning. The
+# degree-q march beside the adjoints gives what it gives after them.
 # One goal with weight 1, so that J is the goal's value; the slab systems are solved
 # directly, and loops.csv's 8 significant digits of J (about 0.35) bound the agreement.
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
@@ -63,6 +64,28 @@ PY
 check galerkin_dG1 identity
 check galerkin_dG0 identity --set discretization.r=0
 check supg_dG1 supg --set discretization.delta0=1
+check supg_dG1_serial supg --set discretization.delta0=1 --set adaptivity.concurrent_marches=false
+
+# The degree-q march beside the adjoints (concurrent marches, the default on more than
+# one thread) and after them give the same J_hi on every loop.
+/usr/bin/python3 - "$tmp/supg_dG1/loops.csv" "$tmp/supg_dG1_serial/loops.csv" "$(nproc)" <<'PY' || fail=1
+import csv, sys
+a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+bad = []
+if int(sys.argv[3]) > 1 and any(r["concurrent"] != "1" for r in a):
+    bad.append("the default run did not march concurrently on %s cores" % sys.argv[3])
+if any(r["concurrent"] != "0" for r in b):
+    bad.append("concurrent_marches = false marched concurrently")
+for x, y in zip(a, b):
+    hx, hy = float(x["J_hi_mean_a"]), float(y["J_hi_mean_a"])
+    if abs(hx - hy) > 1e-12 + 1e-9 * abs(hy):
+        bad.append(f"loop {x['loop']}: J_hi {hx:.12e} concurrent, {hy:.12e} after the adjoints")
+if len(a) != len(b):
+    bad.append(f"{len(a)} against {len(b)} loops")
+print(("FAIL: " if bad else "ok: ") + "concurrent and serial degree-q march: " +
+      ("; ".join(bad) if bad else f"{len(a)} loops, equal J_hi"))
+sys.exit(1 if bad else 0)
+PY
 
 # A loop whose primal of degree q fails keeps the DWR's estimates: manufactured constant in
 # cG(2)-dG(1) without the inverse bound, whose degree-3 primal grows past the growth limit

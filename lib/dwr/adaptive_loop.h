@@ -63,9 +63,12 @@ private:
   /// The primal march (U), the dG(r+1) primal of time_indicator = higher_order (U_hi)
   /// and the goal values; with row.concurrent the adjoint march(es) in a second thread,
   /// returned (else an empty AdjointMarch: the caller marches them after).
+  /// With row.concurrent and an `enriched` space, the primal thread then marches the
+  /// primal of degree q (march_enriched; its time is in t_primal).
   AdjointMarch march_both(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint,
                           const MarchOptions &opt, std::vector<Vector<double>> &U,
-                          const TemporalBasis &basis_hi, std::vector<Vector<double>> &U_hi);
+                          const TemporalBasis &basis_hi, std::vector<Vector<double>> &U_hi,
+                          const Space<2> *enriched);
   /// NumericalError naming the loop (label) if an indicator or a goal value is NaN/Inf.
   void check_finite(const LoopRow &row, const Indicators<2> &ind,
                     const std::string &label) const;
@@ -100,12 +103,17 @@ private:
   /// The adjoint operator's figures into row (solver choice, factor size) and its
   /// factors and matrices freed; nothing if adj.op is already empty.
   void release_adjoint(LoopRow &row, AdjointMarch &adj);
+  /// adaptivity.goal_estimate = enriched: the space of degree q for march_enriched,
+  /// with the loop's crosswind factor (made before a second thread starts: the two
+  /// threads do not build spaces on the triangulation at once).
+  std::unique_ptr<Space<2>> make_enriched(const std::vector<double> &cw_scale) const;
   /// adaptivity.goal_estimate = enriched: the primal marched once more in the adjoint's
-  /// degree q on the loop's meshes (the crosswind factor cw_scale), its goal values
-  /// into row.J_goal_hi (estimate_by_goal forms the goals' estimates from them); its
-  /// time goes to t_estimate.
-  void march_enriched(LoopRow &row, const std::vector<double> &cw_scale,
-                      const MarchOptions &opt) const;
+  /// degree q on the loop's meshes, its goal values into row.J_goal_hi
+  /// (estimate_by_goal forms the goals' estimates from them). `concurrent`: in the
+  /// primal thread while the adjoints march (no Trilinos, one BLAS thread). Returns its
+  /// wall time.
+  double march_enriched(LoopRow &row, const Space<2> &space, const MarchOptions &opt,
+                        bool concurrent) const;
   /// The indicators ind of the weighted goal from the adjoint march: one adjoint for
   /// J_w = sum_i w_i J_i, or (by_goal) one per goal and ind = sum_i w_i ind_i, with
   /// goal.weights = estimate w_i = sign(eta_i) / max(|J_i(u_h)|, 1e-12). Sets t_adjoint,

@@ -193,16 +193,21 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &st
   opt.growth_limit = prm.discretization.growth_limit;
   std::vector<Vector<double>> U, U_hi;
   const TemporalBasis basis_hi(prm.discretization.r + 1); // time_indicator = higher_order
-  AdjointMarch adj = march_both(row, primal, adjoint, opt, U, basis_hi, U_hi);
+  // enriched with concurrent marches: its space made now, its march beside the adjoints
+  std::unique_ptr<Space<2>> enriched_space =
+      enriched && row.concurrent ? make_enriched(cw_scale) : nullptr;
+  AdjointMarch adj =
+      march_both(row, primal, adjoint, opt, U, basis_hi, U_hi, enriched_space.get());
+  enriched_space.reset();
   const HigherOrderPrimal hi{basis_hi, U_hi};
   const HigherOrderPrimal *hi_ptr = U_hi.empty() ? nullptr : &hi;
   if (!row.concurrent)
     adj = march_adjoints(row.loop, adjoint, goals, opt, false);
-  if (enriched)
+  if (enriched && !row.concurrent)
   {
     // (after the adjoint's factors: the two degree-q factorizations are not held at once)
     release_adjoint(row, adj);
-    march_enriched(row, cw_scale, opt);
+    row.t_estimate += march_enriched(row, *make_enriched(cw_scale), opt, false);
   }
   estimate_from(row, ind, primal, adjoint, U, hi_ptr, std::move(adj));
   check_finite(row, ind, opt.label);
@@ -248,7 +253,8 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
                                       const Space<2> &adjoint, const MarchOptions &opt,
                                       std::vector<Vector<double>> &U,
                                       const TemporalBasis &basis_hi,
-                                      std::vector<Vector<double>> &U_hi)
+                                      std::vector<Vector<double>> &U_hi,
+                                      const Space<2> *enriched_space)
 {
   // The adjoint does not depend on the primal unless goal.weights = auto: with
   // concurrent marches it runs in a second thread while the primal marches (the
@@ -292,9 +298,11 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
     U_hi = march_primal(primal, mesh, basis_hi, op, opt);
   }
   release_free_memory();
-  row.t_primal = t.wall_time();
   evaluate_goals(row, primal, U);
   gate.release(true);
+  if (concurrent && enriched_space)
+    march_enriched(row, *enriched_space, opt, true); // (beside the adjoints)
+  row.t_primal = t.wall_time();
   return concurrent ? adjoint_thread.get() : AdjointMarch();
 }
 

@@ -121,12 +121,18 @@ void AdaptiveLoop::release_adjoint(LoopRow &row, AdjointMarch &adj)
   release_free_memory();
 }
 
-void AdaptiveLoop::march_enriched(LoopRow &row, const std::vector<double> &cw_scale,
-                                  const MarchOptions &opt) const
+std::unique_ptr<Space<2>>
+AdaptiveLoop::make_enriched(const std::vector<double> &cw_scale) const
+{
+  auto space = make_enriched_space(prm, *scene, tria, q);
+  space->set_crosswind_scale(cw_scale);
+  return space;
+}
+
+double AdaptiveLoop::march_enriched(LoopRow &row, const Space<2> &space,
+                                    const MarchOptions &opt, bool concurrent) const
 {
   Timer t;
-  const auto space = make_enriched_space(prm, *scene, tria, q);
-  space->set_crosswind_scale(cw_scale);
   MarchOptions o = opt;
   o.label += " (primal of degree " + std::to_string(q) + ", adaptivity.goal_estimate)";
   row.J_goal_hi.clear();
@@ -134,11 +140,11 @@ void AdaptiveLoop::march_enriched(LoopRow &row, const std::vector<double> &cw_sc
   {
     std::vector<Vector<double>> Uq;
     {
-      SlabOperator<2> op(*space, basis, march_solver_options(0, "", false));
-      Uq = march_primal(*space, mesh, basis, op, o);
+      SlabOperator<2> op(space, basis, march_solver_options(0, "", concurrent));
+      Uq = march_primal(space, mesh, basis, op, o);
     }
     for (const GoalSpec &goal : goals)
-      row.J_goal_hi.push_back(goal_value(*space, goal, mesh, basis, Uq));
+      row.J_goal_hi.push_back(goal_value(space, goal, mesh, basis, Uq));
     for (const double J : row.J_goal_hi)
       if (!std::isfinite(J))
         throw NumericalError(o.label + ": a goal value J(u_q) is NaN/Inf");
@@ -153,7 +159,7 @@ void AdaptiveLoop::march_enriched(LoopRow &row, const std::vector<double> &cw_sc
                 << "; this loop's goal estimates are the DWR's" << std::endl;
   }
   release_free_memory();
-  row.t_estimate += t.wall_time();
+  return t.wall_time();
 }
 
 void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,

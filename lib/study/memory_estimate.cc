@@ -133,7 +133,8 @@ MemoryEstimate estimate_memory(const MemoryModel &m)
   const Operator op_hi = m.higher_order ? slab_operator(m.primal, m, t + 1) : Operator();
   const double U = solutions(m.primal, m.n_slabs + m.extra_primal_slabs),
                U_hi = solutions(m.primal, m.higher_order_slabs),
-               Z = m.adjoints_stored * solutions(m.adjoint, m.n_slabs);
+               Z = m.adjoints_stored * solutions(m.adjoint, m.n_slabs),
+               U_q = m.enriched ? solutions(m.adjoint, m.n_slabs) : 0.;
   Phase start;
   start.matrices = space(m.primal) + space(m.adjoint);
   Phase peak;
@@ -150,6 +151,15 @@ MemoryEstimate estimate_memory(const MemoryModel &m)
       peak = larger(peak, with(with(primal_done, op_hi, true), op_a, true));
     peak = larger(peak, with(with(primal_done, m.higher_order ? op_hi : op_p, false, U_hi),
                              op_a, false, Z));
+    if (m.enriched)
+    {
+      // the primal thread's degree-q march beside the adjoints' (their factorizations
+      // may overlap)
+      Phase hi_done = primal_done;
+      hi_done.solutions += U_hi;
+      peak = larger(peak, with(with(hi_done, op_a, true), op_a, true));
+      peak = larger(peak, with(with(hi_done, op_a, false, U_q), op_a, false, Z));
+    }
   }
   else
   {
@@ -163,6 +173,12 @@ MemoryEstimate estimate_memory(const MemoryModel &m)
     }
     if (m.adjoint.n_space > 0)
       peak = larger(peak, larger(with(done, op_a, true), with(done, op_a, false, Z)));
+    if (m.enriched && m.adjoint.n_space > 0)
+    {
+      // after the adjoints' factors are freed, beside their solutions
+      done.solutions += Z;
+      peak = larger(peak, larger(with(done, op_a, true), with(done, op_a, false, U_q)));
+    }
   }
   MemoryEstimate e;
   e.solutions_mb = peak.solutions / MB;
@@ -252,6 +268,7 @@ MemoryModel memory_model(const Parameters &prm, const SlabSystemSize &primal,
     m.higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
     if (m.higher_order)
       m.higher_order_slabs = (n_slabs * (r + 2) + r) / (r + 1);
+    m.enriched = prm.adaptivity.goal_estimate == GoalEstimate::enriched;
   }
   m.base_mb = base_mb;
   return m;

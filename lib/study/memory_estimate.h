@@ -51,6 +51,10 @@ struct MemoryModel
   /// The primal and the adjoint marched at the same time (adaptivity.concurrent_marches):
   /// the primal thread's operators (dG(r), then dG(r+1)) beside the adjoint's.
   bool concurrent = false;
+  /// adaptivity.goal_estimate = enriched: the primal marched once more in the adjoint's
+  /// degree (an operator of the adjoint's size and its slab solutions), after the
+  /// adjoints, or in the primal thread while they march when `concurrent`.
+  bool enriched = false;
 };
 
 struct MemoryEstimate
