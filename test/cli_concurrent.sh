@@ -64,9 +64,10 @@ if not (k["solves"] > 0 and k["frozen_factorizations"] > 0):
 print(f"manufactured rotating: {k['solves']} Krylov solves, {k['iterations']} iterations")
 PY
 
-# (tolerance_measure = parts: one adjoint for the weighted goal; hemker.json's own
-# measure, goals, solves one adjoint per goal)
-one_adjoint=(--set adaptivity.tolerance_measure=parts)
+# (tolerance_measure = parts and the DWR goal estimate: one adjoint for the weighted
+# goal; hemker.json's own measure, goals, and its enriched estimate solve one adjoint per
+# goal)
+one_adjoint=(--set adaptivity.tolerance_measure=parts --set adaptivity.goal_estimate=dwr)
 both_ways hemker_auto 1e-12 hemker --set adaptivity.loops=4 \
   "${one_adjoint[@]}" || fail=1
 "$bin" run "$src/config/hemker.json" --set adaptivity.loops=2 --set output.vtu_loops=0 \
