@@ -288,15 +288,17 @@ TEST(AdjointOutflow, GoalInsideTheOutflowLayerIsEstimatedOnCoarseMeshes)
 
 namespace
 {
-/// hemker.json's first loop without its wall layer (2,704 DoFs), with per-goal estimates
-/// and `--set KEY=VALUE`: its loops.csv row.
+/// hemker.json's first loop without its wall layer (2,704 DoFs), with per-goal DWR
+/// estimates (each goal's indicators summed, not the enriched estimate) and `--set
+/// KEY=VALUE`: its loops.csv row.
 std::map<std::string, double> hemker_first_loop(const std::string &key, const std::string &value)
 {
   const std::string dir = "regression_first_loop_" + key + "_" + value;
   EXPECT_EQ(run("hemker.json", dir,
                 "--set adaptivity.loops=1 --set adaptivity.tolerance=0 --set "
                 "discretization.wall_layer=0 --set "
-                "adaptivity.per_goal_estimates=true --set output.vtu_loops=0 --set " +
+                "adaptivity.per_goal_estimates=true --set adaptivity.goal_estimate=dwr "
+                "--set output.vtu_loops=0 --set " +
                     key + "=" + value),
             0);
   const Table t = read_csv(dir + "/loops.csv");
