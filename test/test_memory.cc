@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <string>
 
 using namespace anisodwr;
@@ -80,6 +81,32 @@ TEST(MemoryEstimate, ConcurrentMarchesHoldBothOperators)
       // than the solutions and the larger operator alone
       EXPECT_GT(concurrent.total_mb, m.base_mb + concurrent.stored_solutions_mb);
     }
+}
+
+TEST(MemoryEstimate, EnrichedMarchAddsAnOperatorAndItsSolutions)
+{
+  // adaptivity.goal_estimate = enriched: one more operator of the adjoint's size and its
+  // N slab solutions, after the adjoints (beside their solutions) or beside them
+  // (concurrent); the stored solutions at the end of the marches are unchanged
+  for (const bool iterative : {false, true})
+  {
+    std::map<bool, double> enriched_total;
+    for (const bool concurrent : {false, true})
+    {
+      auto m = loop_model(1e5, 1, 36, iterative);
+      m.concurrent = concurrent;
+      const auto plain = estimate_memory(m);
+      m.enriched = true;
+      const auto e = estimate_memory(m);
+      const double u_q = 8. * 2 * 4e5 * 36 / MB;
+      EXPECT_DOUBLE_EQ(e.stored_solutions_mb, plain.stored_solutions_mb);
+      EXPECT_GT(e.total_mb, plain.total_mb);
+      // its march's end holds every stored solution and u_q
+      EXPECT_GT(e.total_mb, m.base_mb + e.stored_solutions_mb + u_q);
+      enriched_total[concurrent] = e.total_mb;
+    }
+    EXPECT_GT(enriched_total[true], enriched_total[false]);
+  }
 }
 
 TEST(MemoryEstimate, PrimalOnlyRun)
