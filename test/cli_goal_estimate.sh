@@ -7,7 +7,9 @@
 # included (loops 2-4), for dG(0) and dG(1). With SUPG the two differ (the adjoint's
 # delta0 is not the primal's), and eta_<goal> must be J_hi - J + eta_tau_<goal>.
 # A loop whose degree-q primal fails keeps the DWR's estimates, with a warning. The
-# degree-q march beside the adjoints gives what it gives after them.
+# degree-q march beside the adjoints gives what it gives after them. goal_estimate =
+# consistent (u_q from the adjoint's own operator) meets the same identity without
+# stabilization, and gives enriched's u_q where the adjoint is stabilized as the primal.
 # One goal with weight 1, so that J is the goal's value; the slab systems are solved
 # directly, and loops.csv's 8 significant digits of J (about 0.35) bound the agreement.
 source "$(dirname "${BASH_SOURCE[0]}")/script_setup.sh" "$@"
@@ -30,7 +32,7 @@ cat >"$tmp/galerkin.json" <<'JSON'
 }
 JSON
 
-check() { # NAME EXPECT(identity|supg) ARGS...
+check() { # NAME EXPECT(identity|supg|any) ARGS...
   local name=$1 want=$2 out="$tmp/$1"
   shift 2
   "$bin" run "$tmp/galerkin.json" "$@" --output "$out" >/dev/null 2>&1 ||
@@ -65,6 +67,32 @@ check galerkin_dG1 identity
 check galerkin_dG0 identity --set discretization.r=0
 check supg_dG1 supg --set discretization.delta0=1
 check supg_dG1_serial supg --set discretization.delta0=1 --set adaptivity.concurrent_marches=false
+
+# goal_estimate = consistent (u_q from the adjoint's operator, untransposed): the same
+# identity without stabilization; with SUPG eta_<goal> = J_hi - J + eta_tau_<goal>; with
+# the adjoint stabilized as the primal (adjoint_delta0 = -1, Dirichlet faces as the
+# primal's) its u_q is enriched's, marched by the adjoint's factors: the same J_hi.
+check galerkin_consistent identity --set adaptivity.goal_estimate=consistent
+check supg_consistent any --set discretization.delta0=1 --set adaptivity.goal_estimate=consistent
+same=(--set discretization.delta0=1 --set adaptivity.adjoint_delta0=-1
+  --set adaptivity.adjoint_outflow=dirichlet)
+check same_enriched any "${same[@]}"
+check same_consistent any "${same[@]}" --set adaptivity.goal_estimate=consistent
+same_hi() { # A B: equal J_hi on every loop
+  /usr/bin/python3 - "$tmp/$1/loops.csv" "$tmp/$2/loops.csv" "$1" "$2" <<'PY' || fail=1
+import csv, sys
+a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+bad = [f"loop {x['loop']}: J_hi {x['J_hi_mean_a']} against {y['J_hi_mean_a']}"
+       for x, y in zip(a, b)
+       if abs(float(x["J_hi_mean_a"]) - float(y["J_hi_mean_a"])) > 1e-7 * abs(float(y["J_hi_mean_a"]))]
+if len(a) != len(b) or not a:
+    bad.append(f"{len(a)} against {len(b)} loops")
+print(("FAIL: " if bad else "ok: ") + f"{sys.argv[3]} and {sys.argv[4]}: " +
+      ("; ".join(bad) if bad else f"{len(a)} loops, equal J_hi"))
+sys.exit(1 if bad else 0)
+PY
+}
+same_hi same_enriched same_consistent
 
 # The degree-q march beside the adjoints (concurrent marches, the default on more than
 # one thread) and after them give the same J_hi on every loop.

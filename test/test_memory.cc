@@ -83,7 +83,7 @@ TEST(MemoryEstimate, ConcurrentMarchesHoldBothOperators)
     }
 }
 
-TEST(MemoryEstimate, EnrichedMarchAddsAnOperatorAndItsSolutions)
+TEST(MemoryEstimate, DegreeQPrimalOfTheGoalEstimates)
 {
   // adaptivity.goal_estimate = enriched: one more operator of the adjoint's size and its
   // N slab solutions, after the adjoints (beside their solutions) or beside them
@@ -106,6 +106,18 @@ TEST(MemoryEstimate, EnrichedMarchAddsAnOperatorAndItsSolutions)
       enriched_total[concurrent] = e.total_mb;
     }
     EXPECT_GT(enriched_total[true], enriched_total[false]);
+    // goal_estimate = consistent: u_q's solutions beside the adjoints' operator, no
+    // operator of its own: more than without, at most enriched's after the adjoints
+    // (whose operator takes the adjoint's place) and less than enriched's beside them
+    auto m = loop_model(1e5, 1, 36, iterative);
+    const auto plain = estimate_memory(m);
+    m.consistent = true;
+    const auto c = estimate_memory(m);
+    EXPECT_DOUBLE_EQ(c.stored_solutions_mb, plain.stored_solutions_mb);
+    EXPECT_GE(c.total_mb, plain.total_mb);
+    EXPECT_GT(c.total_mb, m.base_mb + c.stored_solutions_mb + 8. * 2 * 4e5 * 36 / MB);
+    EXPECT_LE(c.total_mb, enriched_total[false]);
+    EXPECT_LT(c.total_mb, enriched_total[true]);
   }
 }
 

@@ -48,13 +48,20 @@ enum class GoalEstimate
   /// adjoint identity rho(u_h)(z_q) = J(u_q) - J(u_h)); with SUPG and a differently
   /// stabilized adjoint it does not, and the DWR sum then carries the two
   /// stabilizations' mismatch. The DWR indicators still mark the cells.
-  enriched
+  enriched,
+  /// J_i(u_q) - J_i(u_h) + eta_tau,i with u_q solving the adjoint's own slab operator
+  /// (degree q, the adjoint's stabilization) untransposed, by its factorization after
+  /// the adjoints: the residual of u_h in the adjoint's stabilized form weighted by z_i
+  /// itself, the DWR identity without the interpolant and the stabilizations' mismatch.
+  consistent
 };
 
 inline const std::vector<Named<GoalEstimate>> &names(GoalEstimate)
 {
-  static const std::vector<Named<GoalEstimate>> table{{GoalEstimate::dwr, "dwr"},
-                                                      {GoalEstimate::enriched, "enriched"}};
+  static const std::vector<Named<GoalEstimate>> table{
+      {GoalEstimate::dwr, "dwr"},
+      {GoalEstimate::enriched, "enriched"},
+      {GoalEstimate::consistent, "consistent"}};
   return table;
 }
 

@@ -127,9 +127,15 @@ std::vector<Entry> adaptivity_entries()
        "sum carries the mismatch of the primal's and the adjoint's stabilization, the "
        "enriched estimate needs the primal of degree q to be much closer to u than "
        "u_h is (doc/results.md, 'Goal estimates from the enriched primal': better on "
-       "Hemker, worse where the layer is unresolved and the goal smooth). Implies "
-       "per_goal_estimates; the DWR indicators still mark the cells and the combined "
-       "columns eta_h, I_eff stay theirs."},
+       "Hemker, worse where the layer is unresolved and the goal smooth). consistent: the "
+       "same with u_q solving the adjoint's own slab operator (degree q, the adjoint's "
+       "stabilization and boundary faces) untransposed, with the adjoint's factorization "
+       "after its solves (no factorization of its own): J_i(u_q) - J_i(u_h) is then the "
+       "residual of u_h in the adjoint's stabilized form of degree q weighted by z_i, the "
+       "DWR identity without the interpolant and without the two stabilizations' "
+       "mismatch; its time is in t_adjoint (doc/results.md, 'Goal estimates from the "
+       "enriched primal'). Both imply per_goal_estimates; the DWR indicators still mark "
+       "the cells and the combined columns eta_h, I_eff stay theirs."},
       {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
        "March the adjoint(s) in a second thread while the primal marches (with "
        "goal.weights = auto and one adjoint for the weighted goal: assemble and "

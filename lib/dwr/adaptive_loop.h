@@ -41,6 +41,9 @@ struct AdjointMarch
 {
   std::unique_ptr<SlabOperator<2>> op;
   std::vector<std::vector<Vector<double>>> Z;
+  /// goal_estimate = consistent: each goal's value of u_q (the adjoint's operator solved
+  /// untransposed); empty otherwise and where that march failed
+  std::vector<double> J_hi;
   double wall = 0;
 };
 
@@ -114,6 +117,12 @@ private:
   /// wall time.
   double march_enriched(LoopRow &row, const Space<2> &space, const MarchOptions &opt,
                         bool concurrent) const;
+  /// The goals' values (specs) of the primal of degree q on `space`, marched with the
+  /// operator `shared` (goal_estimate = consistent: the adjoint's, untransposed) or with
+  /// its own; empty, with a warning, where the march fails (NumericalError).
+  std::vector<double> degree_q_goal_values(const Space<2> &space, SlabOperator<2> *shared,
+                                           const std::vector<GoalSpec> &specs,
+                                           const MarchOptions &opt, bool concurrent) const;
   /// The indicators ind of the weighted goal from the adjoint march: one adjoint for
   /// J_w = sum_i w_i J_i, or (by_goal) one per goal and ind = sum_i w_i ind_i, with
   /// goal.weights = estimate w_i = sign(eta_i) / max(|J_i(u_h)|, 1e-12). Sets t_adjoint,
@@ -141,6 +150,8 @@ private:
   const bool by_goal;
   /// adaptivity.goal_estimate = enriched (implies by_goal)
   const bool enriched;
+  /// adaptivity.goal_estimate = consistent (implies by_goal)
+  const bool consistent;
   /// "exact" (the scene's exact solution), "goal.reference" or "none": where J_exact,
   /// and with it the error columns and I_eff, come from
   const std::string error_reference;

@@ -65,8 +65,9 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
       estimate_weights(prm.goal.weights == "estimate"),
       by_goal(estimate_weights || prm.adaptivity.per_goal_estimates ||
               prm.adaptivity.tolerance_measure == ToleranceMeasure::goals ||
-              prm.adaptivity.goal_estimate == GoalEstimate::enriched),
+              prm.adaptivity.goal_estimate != GoalEstimate::dwr),
       enriched(prm.adaptivity.goal_estimate == GoalEstimate::enriched),
+      consistent(prm.adaptivity.goal_estimate == GoalEstimate::consistent),
       error_reference(scene->exact()                      ? "exact"
                       : std::isnan(goals.front().reference) ? "none"
                                                             : "goal.reference"),
@@ -209,6 +210,8 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &st
     release_adjoint(row, adj);
     row.t_estimate += march_enriched(row, *make_enriched(cw_scale), opt, false);
   }
+  if (consistent)
+    row.J_goal_hi = std::move(adj.J_hi);
   estimate_from(row, ind, primal, adjoint, U, hi_ptr, std::move(adj));
   check_finite(row, ind, opt.label);
   if (prm.adaptivity.measure_time_error)

@@ -59,7 +59,7 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   Timer t;
   AdjointMarch a;
   SlabSolverOptions options = march_solver_options(loop, "adjoint", concurrent);
-  options.transposed_only = true;
+  options.transposed_only = !consistent; // (consistent: u_q solves it untransposed)
   a.op = std::make_unique<SlabOperator<2>>(adjoint, basis, options);
   double waited = 0;
   if (weights.valid())
@@ -86,6 +86,8 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   else
     a.Z.push_back(
         march_adjoint(adjoint, mesh, basis, *a.op, assemble_goal_vectors(adjoint, specs), opt));
+  if (consistent) // u_q by the adjoint's factors (specs: this thread's copy of the goals)
+    a.J_hi = degree_q_goal_values(adjoint, a.op.get(), specs, opt, concurrent);
   a.wall = t.wall_time() - waited;
   return a;
 }
@@ -133,33 +135,46 @@ double AdaptiveLoop::march_enriched(LoopRow &row, const Space<2> &space,
                                     const MarchOptions &opt, bool concurrent) const
 {
   Timer t;
+  row.J_goal_hi = degree_q_goal_values(space, nullptr, goals, opt, concurrent);
+  release_free_memory();
+  return t.wall_time();
+}
+
+std::vector<double> AdaptiveLoop::degree_q_goal_values(const Space<2> &space,
+                                                       SlabOperator<2> *shared,
+                                                       const std::vector<GoalSpec> &specs,
+                                                       const MarchOptions &opt,
+                                                       bool concurrent) const
+{
   MarchOptions o = opt;
   o.label += " (primal of degree " + std::to_string(q) + ", adaptivity.goal_estimate)";
-  row.J_goal_hi.clear();
+  std::vector<double> J;
   try
   {
     std::vector<Vector<double>> Uq;
+    if (shared)
+      Uq = march_primal(space, mesh, basis, *shared, o);
+    else
     {
       SlabOperator<2> op(space, basis, march_solver_options(0, "", concurrent));
       Uq = march_primal(space, mesh, basis, op, o);
     }
-    for (const GoalSpec &goal : goals)
-      row.J_goal_hi.push_back(goal_value(space, goal, mesh, basis, Uq));
-    for (const double J : row.J_goal_hi)
-      if (!std::isfinite(J))
+    for (const GoalSpec &goal : specs)
+      J.push_back(goal_value(space, goal, mesh, basis, Uq));
+    for (const double j : J)
+      if (!std::isfinite(j))
         throw NumericalError(o.label + ": a goal value J(u_q) is NaN/Inf");
   }
   catch (const NumericalError &e)
   {
     // a diagnostic solve: the loop goes on with the DWR's goal estimates (J_hi_<goal>
     // empty in loops.csv)
-    row.J_goal_hi.clear();
+    J.clear();
     if (writes_output())
       std::cout << "warning: " << e.what()
                 << "; this loop's goal estimates are the DWR's" << std::endl;
   }
-  release_free_memory();
-  return t.wall_time();
+  return J;
 }
 
 void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,

@@ -134,7 +134,9 @@ MemoryEstimate estimate_memory(const MemoryModel &m)
   const double U = solutions(m.primal, m.n_slabs + m.extra_primal_slabs),
                U_hi = solutions(m.primal, m.higher_order_slabs),
                Z = m.adjoints_stored * solutions(m.adjoint, m.n_slabs),
-               U_q = m.enriched ? solutions(m.adjoint, m.n_slabs) : 0.;
+               U_q = m.enriched || m.consistent ? solutions(m.adjoint, m.n_slabs) : 0.,
+               // what the adjoint's operator holds at the end of its marches
+               Z_end = Z + (m.consistent ? U_q : 0.);
   Phase start;
   start.matrices = space(m.primal) + space(m.adjoint);
   Phase peak;
@@ -150,7 +152,7 @@ MemoryEstimate estimate_memory(const MemoryModel &m)
     if (m.higher_order)
       peak = larger(peak, with(with(primal_done, op_hi, true), op_a, true));
     peak = larger(peak, with(with(primal_done, m.higher_order ? op_hi : op_p, false, U_hi),
-                             op_a, false, Z));
+                             op_a, false, Z_end));
     if (m.enriched)
     {
       // the primal thread's degree-q march beside the adjoints' (their factorizations
@@ -172,7 +174,7 @@ MemoryEstimate estimate_memory(const MemoryModel &m)
       done.solutions += U_hi;
     }
     if (m.adjoint.n_space > 0)
-      peak = larger(peak, larger(with(done, op_a, true), with(done, op_a, false, Z)));
+      peak = larger(peak, larger(with(done, op_a, true), with(done, op_a, false, Z_end)));
     if (m.enriched && m.adjoint.n_space > 0)
     {
       // after the adjoints' factors are freed, beside their solutions
@@ -269,6 +271,7 @@ MemoryModel memory_model(const Parameters &prm, const SlabSystemSize &primal,
     if (m.higher_order)
       m.higher_order_slabs = (n_slabs * (r + 2) + r) / (r + 1);
     m.enriched = prm.adaptivity.goal_estimate == GoalEstimate::enriched;
+    m.consistent = prm.adaptivity.goal_estimate == GoalEstimate::consistent;
   }
   m.base_mb = base_mb;
   return m;

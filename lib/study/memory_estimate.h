@@ -55,6 +55,9 @@ struct MemoryModel
   /// degree (an operator of the adjoint's size and its slab solutions), after the
   /// adjoints, or in the primal thread while they march when `concurrent`.
   bool enriched = false;
+  /// adaptivity.goal_estimate = consistent: u_q's slab solutions, marched after the
+  /// adjoints with their operator (no operator of its own)
+  bool consistent = false;
 };
 
 struct MemoryEstimate
