@@ -78,13 +78,14 @@ same=(--set discretization.delta0=1 --set adaptivity.adjoint_delta0=-1
   --set adaptivity.adjoint_outflow=dirichlet)
 check same_enriched any "${same[@]}"
 check same_consistent any "${same[@]}" --set adaptivity.goal_estimate=consistent
-same_hi() { # A B: equal J_hi on every loop
-  /usr/bin/python3 - "$tmp/$1/loops.csv" "$tmp/$2/loops.csv" "$1" "$2" <<'PY' || fail=1
+same_hi() { # A B ATOL RTOL: J_hi of run A within ATOL + RTOL |J_hi of B| on every loop
+  /usr/bin/python3 - "$tmp/$1/loops.csv" "$tmp/$2/loops.csv" "$1" "$2" "$3" "$4" <<'PY' || fail=1
 import csv, sys
 a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
+atol, rtol = float(sys.argv[5]), float(sys.argv[6])
 bad = [f"loop {x['loop']}: J_hi {x['J_hi_mean_a']} against {y['J_hi_mean_a']}"
        for x, y in zip(a, b)
-       if abs(float(x["J_hi_mean_a"]) - float(y["J_hi_mean_a"])) > 1e-7 * abs(float(y["J_hi_mean_a"]))]
+       if abs(float(x["J_hi_mean_a"]) - float(y["J_hi_mean_a"])) > atol + rtol * abs(float(y["J_hi_mean_a"]))]
 if len(a) != len(b) or not a:
     bad.append(f"{len(a)} against {len(b)} loops")
 print(("FAIL: " if bad else "ok: ") + f"{sys.argv[3]} and {sys.argv[4]}: " +
@@ -92,10 +93,11 @@ print(("FAIL: " if bad else "ok: ") + f"{sys.argv[3]} and {sys.argv[4]}: " +
 sys.exit(1 if bad else 0)
 PY
 }
-same_hi same_enriched same_consistent
+same_hi same_enriched same_consistent 0 1e-7
 
 # The degree-q march beside the adjoints (concurrent marches, the default on more than
 # one thread) and after them give the same J_hi on every loop.
+same_hi supg_dG1 supg_dG1_serial 1e-12 1e-9
 /usr/bin/python3 - "$tmp/supg_dG1/loops.csv" "$tmp/supg_dG1_serial/loops.csv" "$(nproc)" <<'PY' || fail=1
 import csv, sys
 a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
@@ -104,14 +106,8 @@ if int(sys.argv[3]) > 1 and any(r["concurrent"] != "1" for r in a):
     bad.append("the default run did not march concurrently on %s cores" % sys.argv[3])
 if any(r["concurrent"] != "0" for r in b):
     bad.append("concurrent_marches = false marched concurrently")
-for x, y in zip(a, b):
-    hx, hy = float(x["J_hi_mean_a"]), float(y["J_hi_mean_a"])
-    if abs(hx - hy) > 1e-12 + 1e-9 * abs(hy):
-        bad.append(f"loop {x['loop']}: J_hi {hx:.12e} concurrent, {hy:.12e} after the adjoints")
-if len(a) != len(b):
-    bad.append(f"{len(a)} against {len(b)} loops")
 print(("FAIL: " if bad else "ok: ") + "concurrent and serial degree-q march: " +
-      ("; ".join(bad) if bad else f"{len(a)} loops, equal J_hi"))
+      ("; ".join(bad) if bad else "the concurrent column as asked"))
 sys.exit(1 if bad else 0)
 PY
 
