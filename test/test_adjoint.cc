@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <future>
 #include <random>
 #include <sstream>
 
@@ -375,3 +376,62 @@ TEST_P(AdjointGoal, PrimalGoalEqualsAdjointFormWithEqualSpaces)
 }
 
 INSTANTIATE_TEST_SUITE_P(R, AdjointGoal, ::testing::Values(0u, 1u, 2u));
+
+// goal_estimate = consistent with concurrent marches: a primal march by the adjoint's
+// factors in a second thread, beside the adjoint's transposed solves on the same
+// operator, gives the march of an operator of its own, and the adjoint is unchanged.
+TEST(Adjoint, PreparedPrimalMarchBesideTheAdjointEqualsItsOwn)
+{
+  const auto scene = manufactured(); // (inhomogeneous Dirichlet values: the lift acts)
+  Triangulation<2> tria;
+  make_mesh(*scene, tria);
+  Space<2> space(*scene, tria, 2, Stabilization{1.0, SupgLength::volume, 0.});
+  space.setup();
+  const TemporalBasis basis(1);
+  const TimeMesh mesh = TimeMesh::uniform(0.5, 6);
+  const GoalVectors j = assemble_goal_vectors(space, goals());
+  SlabOperator<2> own(space, basis, SlabSolverOptions::direct(true));
+  const auto U_own = march_primal(space, mesh, basis, own, MarchOptions{});
+  const auto Z_own = march_adjoint(space, mesh, basis, own, j, MarchOptions{});
+
+  SlabOperator<2> op(space, basis, SlabSolverOptions::direct(true));
+  EXPECT_FALSE(op.prepared_for(mesh)); // (not factorized yet)
+  EXPECT_THROW(march_primal_prepared(space, mesh, basis, op, MarchOptions{}), std::logic_error);
+  const unsigned int last = mesh.n_slabs() - 1;
+  op.prepare(mesh.start(last), mesh.tau(last));
+  ASSERT_TRUE(op.prepared_for(mesh));
+  auto primal = std::async(std::launch::async, [&]()
+                           { return march_primal_prepared(space, mesh, basis, op, MarchOptions{}); });
+  const auto Z = march_adjoint(space, mesh, basis, op, j, MarchOptions{});
+  const auto U = primal.get();
+  for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+  {
+    Vector<double> d(U[n]);
+    d -= U_own[n];
+    EXPECT_LE(d.linfty_norm(), 1e-13 * U_own[n].linfty_norm()) << "slab " << n;
+    d = Z[n];
+    d -= Z_own[n];
+    EXPECT_LE(d.linfty_norm(), 1e-13 * Z_own[n].linfty_norm()) << "slab " << n;
+  }
+  EXPECT_GT(U_own.back().linfty_norm(), 1e-2);
+
+  // not prepared for: slabs of another length, coefficients that depend on time, an
+  // operator for transposed solves only
+  TimeMesh uneven = mesh;
+  uneven.t[1] = 0.5 * uneven.t[1];
+  EXPECT_FALSE(op.prepared_for(uneven));
+  SlabSolverOptions transposed = SlabSolverOptions::direct(true);
+  transposed.transposed_only = true;
+  SlabOperator<2> adjoint_only(space, basis, transposed);
+  adjoint_only.prepare(0., mesh.tau(0));
+  EXPECT_FALSE(adjoint_only.prepared_for(mesh));
+  const auto rotating = create_scene<2>(Parameters::from_overrides(
+      {"scene.name=manufactured", "scene.variant=rotating", "scene.epsilon=0.01"}));
+  Triangulation<2> tria_r;
+  make_mesh(*rotating, tria_r);
+  Space<2> space_r(*rotating, tria_r, 1, Stabilization{1.0, SupgLength::volume, 0.});
+  space_r.setup();
+  SlabOperator<2> op_r(space_r, basis, SlabSolverOptions::direct(true));
+  op_r.prepare(0., mesh.tau(0));
+  EXPECT_FALSE(op_r.prepared_for(mesh));
+}

@@ -20,6 +20,7 @@
 #include <deal.II/grid/cell_id.h>
 #include <deal.II/grid/tria.h>
 
+#include <functional>
 #include <future>
 #include <map>
 #include <limits>
@@ -37,9 +38,13 @@ constexpr double dwr_nan = std::numeric_limits<double>::quiet_NaN();
 /// The adjoint march of a loop: its slab operator, the adjoint slab solutions (one set
 /// per goal with goal.weights = estimate or per_goal_estimates, else one for the
 /// weighted goal) and its wall time.
+/// An adjoint operator that two threads may hold (goal_estimate = consistent: the
+/// primal thread marches u_q by its factors while the adjoint thread marches).
+using SharedOperator = std::shared_ptr<const SlabOperator<2>>;
+
 struct AdjointMarch
 {
-  std::unique_ptr<SlabOperator<2>> op;
+  std::shared_ptr<SlabOperator<2>> op;
   std::vector<std::vector<Vector<double>>> Z;
   /// goal_estimate = consistent: each goal's value of u_q (the adjoint's operator solved
   /// untransposed); empty otherwise and where that march failed
@@ -67,7 +72,10 @@ private:
   /// and the goal values; with row.concurrent the adjoint march(es) in a second thread,
   /// returned (else an empty AdjointMarch: the caller marches them after).
   /// With row.concurrent and an `enriched` space, the primal thread then marches the
-  /// primal of degree q (march_enriched; its time is in t_primal).
+  /// primal of degree q (march_enriched; its time is in t_primal); with row.concurrent
+  /// and goal_estimate = consistent it marches u_q by the adjoint's factors beside the
+  /// adjoints where that operator serves every slab (SlabOperator::prepared_for; time in
+  /// t_primal, values returned in J_hi).
   AdjointMarch march_both(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint,
                           const MarchOptions &opt, std::vector<Vector<double>> &U,
                           const TemporalBasis &basis_hi, std::vector<Vector<double>> &U_hi,
@@ -93,10 +101,14 @@ private:
   /// with one adjoint for the weighted goal. Then `weights` is valid: the last slab's
   /// operator is assembled and factorized first, and the march waits for weights (true
   /// once evaluate_goals has set the goals' weights, false if the primal failed).
+  /// goal_estimate = consistent: u_q's goal values into J_hi, marched after the adjoints
+  /// unless `share` is given: then the operator, once factorized, is passed through it
+  /// if prepared_for(mesh) (another thread marches u_q; null otherwise, and on failure).
   AdjointMarch march_adjoints(unsigned int loop, const Space<2> &adjoint,
                               const std::vector<GoalSpec> &goal_specs,
                               const MarchOptions &opt, bool concurrent,
-                              std::shared_future<bool> weights = {}) const;
+                              std::shared_future<bool> weights = {},
+                              std::promise<SharedOperator> *share = nullptr) const;
   /// J_i(u_tau h), the weights (auto: from the patch lift) and the weighted J (not yet
   /// for goal.weights = estimate).
   void evaluate_goals(LoopRow &row, const Space<2> &primal,
@@ -117,12 +129,14 @@ private:
   /// wall time.
   double march_enriched(LoopRow &row, const Space<2> &space, const MarchOptions &opt,
                         bool concurrent) const;
-  /// The goals' values (specs) of the primal of degree q on `space`, marched with the
-  /// operator `shared` (goal_estimate = consistent: the adjoint's, untransposed) or with
-  /// its own; empty, with a warning, where the march fails (NumericalError).
-  std::vector<double> degree_q_goal_values(const Space<2> &space, SlabOperator<2> *shared,
+  /// The forward march of a primal of degree q with the given options.
+  using DegreeQMarch = std::function<std::vector<Vector<double>>(const MarchOptions &)>;
+  /// The goals' values (specs) of the primal of degree q on `space` that `march` gives
+  /// (enriched: by its own operator; consistent: by the adjoint's, untransposed); empty,
+  /// with a warning, where the march fails (NumericalError).
+  std::vector<double> degree_q_goal_values(const Space<2> &space, const DegreeQMarch &march,
                                            const std::vector<GoalSpec> &specs,
-                                           const MarchOptions &opt, bool concurrent) const;
+                                           const MarchOptions &opt) const;
   /// The indicators ind of the weighted goal from the adjoint march: one adjoint for
   /// J_w = sum_i w_i J_i, or (by_goal) one per goal and ind = sum_i w_i ind_i, with
   /// goal.weights = estimate w_i = sign(eta_i) / max(|J_i(u_h)|, 1e-12). Sets t_adjoint,

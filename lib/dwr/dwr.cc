@@ -267,6 +267,11 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
   // one thread: its own threads would compete with the other march.
   const bool concurrent = row.concurrent;
   const ScopedBlasThreads blas(concurrent ? 1 : 0);
+  // consistent: the adjoint's operator, once factorized, for u_q's march in this thread
+  // (declared before the thread's future: it outlives the thread if the primal fails)
+  std::promise<SharedOperator> share;
+  std::future<SharedOperator> shared = share.get_future();
+  std::promise<SharedOperator> *share_ptr = consistent ? &share : nullptr;
   std::future<AdjointMarch> adjoint_thread;
   struct Gate
   {
@@ -284,8 +289,9 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
       auto_weights && !by_goal ? gate.promise.get_future().share() : std::shared_future<bool>();
   if (concurrent)
     adjoint_thread = std::async(
-        std::launch::async, [this, &adjoint, &opt, specs = goals, loop = row.loop, weights]()
-        { return march_adjoints(loop, adjoint, specs, opt, true, weights); });
+        std::launch::async,
+        [this, &adjoint, &opt, specs = goals, loop = row.loop, weights, share_ptr]()
+        { return march_adjoints(loop, adjoint, specs, opt, true, weights, share_ptr); });
   Timer t;
   {
     // (one after the other: the primal's factors are freed before the adjoint factorizes)
@@ -305,8 +311,23 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
   gate.release(true);
   if (concurrent && enriched_space)
     march_enriched(row, *enriched_space, opt, true); // (beside the adjoints)
+  std::vector<double> J_hi;
+  SharedOperator adjoint_op = concurrent && consistent ? shared.get() : nullptr;
+  if (adjoint_op) // (beside the adjoints' solves, which only read the factors too)
+    J_hi = degree_q_goal_values(
+        adjoint,
+        [&](const MarchOptions &o)
+        { return march_primal_prepared(adjoint, mesh, basis, *adjoint_op, o); },
+        goals, opt);
+  const bool shared_march = adjoint_op != nullptr;
+  adjoint_op.reset(); // (the adjoint thread frees it)
   row.t_primal = t.wall_time();
-  return concurrent ? adjoint_thread.get() : AdjointMarch();
+  if (!concurrent)
+    return AdjointMarch();
+  AdjointMarch adj = adjoint_thread.get();
+  if (shared_march)
+    adj.J_hi = std::move(J_hi);
+  return adj;
 }
 
 void AdaptiveLoop::check_finite(const LoopRow &row, const Indicators<2> &ind,

@@ -52,22 +52,44 @@ SlabSolverOptions AdaptiveLoop::march_solver_options(unsigned int loop,
 AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adjoint,
                                           const std::vector<GoalSpec> &goal_specs,
                                           const MarchOptions &opt, bool concurrent,
-                                          std::shared_future<bool> weights) const
+                                          std::shared_future<bool> weights,
+                                          std::promise<SharedOperator> *share) const
 {
+  // `share` always gets a value (null unless the operator serves every slab), also when
+  // this thread fails: the other thread waits for it
+  struct Share
+  {
+    std::promise<SharedOperator> *promise;
+    void operator()(SharedOperator op)
+    {
+      if (promise)
+        promise->set_value(std::move(op));
+      promise = nullptr;
+    }
+    ~Share() { (*this)(nullptr); }
+  } share_op{share};
   // One adjoint per goal: all adjoints first (one factorization serves them), then the
   // estimates without the adjoint's factors in memory
   Timer t;
   AdjointMarch a;
   SlabSolverOptions options = march_solver_options(loop, "adjoint", concurrent);
   options.transposed_only = !consistent; // (consistent: u_q solves it untransposed)
-  a.op = std::make_unique<SlabOperator<2>>(adjoint, basis, options);
+  a.op = std::make_shared<SlabOperator<2>>(adjoint, basis, options);
+  // (prepared here, the march's first prepare() keeps the factors)
+  const bool may_share = share && options.reuse_factorization &&
+                         !adjoint.scene.coefficients_depend_on_time();
   double waited = 0;
-  if (weights.valid())
+  if (weights.valid() || may_share)
   {
     const unsigned int last = mesh.n_slabs() - 1;
     guarded_slab_solve(
         opt, "adjoint", last, mesh, [&]() { a.op->prepare(mesh.start(last), mesh.tau(last)); },
         Vector<double>());
+  }
+  const bool shared = may_share && a.op->prepared_for(mesh);
+  share_op(shared ? a.op : nullptr);
+  if (weights.valid())
+  {
     Timer w;
     if (!weights.get())
       return a;
@@ -86,8 +108,10 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   else
     a.Z.push_back(
         march_adjoint(adjoint, mesh, basis, *a.op, assemble_goal_vectors(adjoint, specs), opt));
-  if (consistent) // u_q by the adjoint's factors (specs: this thread's copy of the goals)
-    a.J_hi = degree_q_goal_values(adjoint, a.op.get(), specs, opt, concurrent);
+  if (consistent && !shared) // u_q by the adjoint's factors (specs: this thread's goals)
+    a.J_hi = degree_q_goal_values(
+        adjoint, [&](const MarchOptions &o) { return march_primal(adjoint, mesh, basis, *a.op, o); },
+        specs, opt);
   a.wall = t.wall_time() - waited;
   return a;
 }
@@ -135,30 +159,29 @@ double AdaptiveLoop::march_enriched(LoopRow &row, const Space<2> &space,
                                     const MarchOptions &opt, bool concurrent) const
 {
   Timer t;
-  row.J_goal_hi = degree_q_goal_values(space, nullptr, goals, opt, concurrent);
+  row.J_goal_hi = degree_q_goal_values(
+      space,
+      [&](const MarchOptions &o)
+      {
+        SlabOperator<2> op(space, basis, march_solver_options(0, "", concurrent));
+        return march_primal(space, mesh, basis, op, o);
+      },
+      goals, opt);
   release_free_memory();
   return t.wall_time();
 }
 
 std::vector<double> AdaptiveLoop::degree_q_goal_values(const Space<2> &space,
-                                                       SlabOperator<2> *shared,
+                                                       const DegreeQMarch &march,
                                                        const std::vector<GoalSpec> &specs,
-                                                       const MarchOptions &opt,
-                                                       bool concurrent) const
+                                                       const MarchOptions &opt) const
 {
   MarchOptions o = opt;
   o.label += " (primal of degree " + std::to_string(q) + ", adaptivity.goal_estimate)";
   std::vector<double> J;
   try
   {
-    std::vector<Vector<double>> Uq;
-    if (shared)
-      Uq = march_primal(space, mesh, basis, *shared, o);
-    else
-    {
-      SlabOperator<2> op(space, basis, march_solver_options(0, "", concurrent));
-      Uq = march_primal(space, mesh, basis, op, o);
-    }
+    const std::vector<Vector<double>> Uq = march(o);
     for (const GoalSpec &goal : specs)
       J.push_back(goal_value(space, goal, mesh, basis, Uq));
     for (const double j : J)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 namespace anisodwr
 {
@@ -125,10 +126,14 @@ template <int dim> double data_bound(const Space<dim> &space, const TimeMesh &me
   return std::max(1., u0 + g + f);
 }
 
-template <int dim>
-std::vector<Vector<double>>
-march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,
-             SlabOperator<dim> &op, const MarchOptions &options)
+namespace
+{
+/// The forward march; prepare(t0, tau) readies the slab's operator and returns its jump
+/// mass M(t_{n-1}), solve(t0, load, U) solves the slab system.
+template <int dim, typename Prepare, typename Solve>
+std::vector<Vector<double>> march(const Space<dim> &space, const TimeMesh &mesh,
+                                  const TemporalBasis &basis, const MarchOptions &options,
+                                  const Prepare &prepare, const Solve &solve)
 {
   const double bound =
       options.growth_limit > 0 ? options.growth_limit * data_bound(space, mesh) : 0.;
@@ -142,25 +147,60 @@ march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis 
         options, "primal", n, mesh,
         [&]()
         {
-          op.prepare(t0, tau);
+          const SparseMatrix<double> &jump_mass = prepare(t0, tau);
           if (n > 0)
           {
             combine_blocks(U[n - 1], basis.right_trace(), last); // u(t_{n-1}^-)
-            op.jump_mass().vmult(coupling, last);
+            jump_mass.vmult(coupling, last);
           }
           assemble_slab_load(space, basis, t0, tau, load);
           add_kron_vector(1., basis.left_trace(), coupling, load);
-          op.solve(load, U[n]);
+          solve(t0, load, U[n]);
         },
         U[n], bound);
   }
   return U;
+}
+} // namespace
+
+template <int dim>
+std::vector<Vector<double>>
+march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,
+             SlabOperator<dim> &op, const MarchOptions &options)
+{
+  return march(
+      space, mesh, basis, options,
+      [&](double t0, double tau) -> const SparseMatrix<double> &
+      {
+        op.prepare(t0, tau);
+        return op.jump_mass();
+      },
+      [&](double, const Vector<double> &load, Vector<double> &U) { op.solve(load, U); });
+}
+
+template <int dim>
+std::vector<Vector<double>>
+march_primal_prepared(const Space<dim> &space, const TimeMesh &mesh,
+                      const TemporalBasis &basis, const SlabOperator<dim> &op,
+                      const MarchOptions &options)
+{
+  if (!op.prepared_for(mesh))
+    throw std::logic_error("march_primal_prepared: the operator is not prepared for the "
+                           "march's slabs");
+  return march(
+      space, mesh, basis, options,
+      [&](double, double) -> const SparseMatrix<double> & { return op.jump_mass(); },
+      [&](double t0, const Vector<double> &load, Vector<double> &U)
+      { op.solve_prepared(t0, load, U); });
 }
 
 template std::vector<Vector<double>> march_primal<2>(const Space<2> &, const TimeMesh &,
                                                      const TemporalBasis &,
                                                      SlabOperator<2> &,
                                                      const MarchOptions &);
+template std::vector<Vector<double>>
+march_primal_prepared<2>(const Space<2> &, const TimeMesh &, const TemporalBasis &,
+                         const SlabOperator<2> &, const MarchOptions &);
 template double data_bound<2>(const Space<2> &, const TimeMesh &);
 template void assemble_slab_load<2>(const Space<2> &, const TemporalBasis &, double,
                                     double, Vector<double> &);

@@ -43,6 +43,15 @@ std::vector<dealii::Vector<double>>
 march_primal(const Space<dim> &space, const TimeMesh &mesh, const TemporalBasis &basis,
              SlabOperator<dim> &op, const MarchOptions &options);
 
+/// march_primal by an operator that another thread prepared and keeps
+/// (op.prepared_for(mesh)): its solves only (SlabOperator::solve_prepared), the operator
+/// unchanged; the same results. Throws std::logic_error if op is not prepared for mesh.
+template <int dim>
+std::vector<dealii::Vector<double>>
+march_primal_prepared(const Space<dim> &space, const TimeMesh &mesh,
+                      const TemporalBasis &basis, const SlabOperator<dim> &op,
+                      const MarchOptions &options);
+
 /// Slab load F_n: int_{I_n} l_k (F(t)) dt by (r+2)-point Gauss quadrature, F(t) the
 /// spatial load vector of Space::assemble_load.
 template <int dim>

@@ -398,28 +398,80 @@ void SlabOperator<dim>::release_condensed()
   kron = KronSplit();
 }
 
+namespace
+{
+/// f(k, block) on each temporal block k of the interleaved vector v (m blocks of n), in
+/// place.
+template <typename F>
+void on_blocks(Vector<double> &v, unsigned int m, types::global_dof_index n, const F &f)
+{
+  Vector<double> block(n);
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    extract_block(v, k, m, block);
+    f(k, block);
+    insert_block(block, k, m, v);
+  }
+}
+} // namespace
+
 template <int dim>
 void SlabOperator<dim>::direct_transposed(const Vector<double> &load, Vector<double> &U) const
 {
-  const unsigned int m = basis.n_dofs();
-  Vector<double> block(space.n_dofs());
+  const auto &c = space.constraints();
   U = load;
-  for (unsigned int k = 0; k < m; ++k)
-  {
-    extract_block(U, k, m, block);
-    space.constraints().condense(block);
-    insert_block(block, k, m, U);
-  }
+  on_blocks(U, basis.n_dofs(), space.n_dofs(), [&](unsigned int, auto &b) { c.condense(b); });
   if (use_modes)
     modes_lu.solve(U, true);
   else
     lu.solve(U, true);
-  for (unsigned int k = 0; k < m; ++k)
-  {
-    extract_block(U, k, m, block);
-    space.constraints().distribute(block);
-    insert_block(block, k, m, U);
-  }
+  on_blocks(U, basis.n_dofs(), space.n_dofs(), [&](unsigned int, auto &b) { c.distribute(b); });
+}
+
+template <int dim>
+Vector<double> SlabOperator<dim>::lifted_load(double t_start, const Vector<double> &load,
+                                              std::vector<AffineConstraints<double>> &nodes) const
+{
+  const unsigned int m = basis.n_dofs();
+  nodes.resize(m);
+  // Dirichlet lift g (values at constrained DoFs only): rhs -= K_full g.
+  Vector<double> g(space.n_dofs() * m), Kg, rhs(load);
+  on_blocks(g, m, space.n_dofs(),
+            [&](unsigned int k, auto &b)
+            {
+              space.make_dirichlet_constraints(t_start + basis.nodes()[k] * tau, nodes[k]);
+              nodes[k].distribute(b);
+            });
+  vmult_kron(terms_full, g, Kg);
+  rhs -= Kg;
+  on_blocks(rhs, m, space.n_dofs(),
+            [&](unsigned int, auto &b) { space.constraints().condense(b); });
+  return rhs;
+}
+
+template <int dim> bool SlabOperator<dim>::prepared_for(const TimeMesh &mesh) const
+{
+  if (!factorized || !reuse || use_iterative || opt.transposed_only ||
+      opt.direct_solver == DirectEngine::mumps || space.scene.coefficients_depend_on_time())
+    return false;
+  for (unsigned int n = 0; n < mesh.n_slabs(); ++n)
+    if (std::abs(mesh.tau(n) - tau) > 1e-12 * mesh.tau(n)) // (prepare()'s same_tau)
+      return false;
+  return true;
+}
+
+template <int dim>
+void SlabOperator<dim>::solve_prepared(double t_start, const Vector<double> &load,
+                                       Vector<double> &U) const
+{
+  std::vector<AffineConstraints<double>> nodes;
+  U = lifted_load(t_start, load, nodes);
+  if (use_modes)
+    modes_lu.solve(U);
+  else
+    lu.solve(U);
+  on_blocks(U, basis.n_dofs(), space.n_dofs(),
+            [&](unsigned int k, auto &b) { nodes[k].distribute(b); });
 }
 
 template <int dim>
@@ -450,59 +502,32 @@ void SlabOperator<dim>::solve_transposed(const std::vector<const Vector<double> 
 template <int dim>
 void SlabOperator<dim>::solve(const Vector<double> &load, Vector<double> &U, bool transpose)
 {
-  if (transpose && !use_iterative)
-  {
-    // (the same steps as below, without the Dirichlet lift)
-    Timer timer;
-    direct_transposed(load, U);
-    time.solve += timer.wall_time();
-    ++time.n_solves;
-    return;
-  }
   if (!transpose && opt.transposed_only)
     throw std::logic_error("SlabOperator: a transposed_only operator solved untransposed");
   Timer timer;
-  const unsigned int m = basis.n_dofs();
-  const auto n = space.n_dofs();
-  Vector<double> rhs(load), block(n);
-  std::vector<AffineConstraints<double>> node_constraints(m);
-  if (!transpose)
-  {
-    // Dirichlet lift g (values at constrained DoFs only): rhs -= K_full g.
-    Vector<double> g(n * m), Kg;
-    for (unsigned int k = 0; k < m; ++k)
-    {
-      space.make_dirichlet_constraints(t0 + basis.nodes()[k] * tau, node_constraints[k]);
-      block = 0.;
-      node_constraints[k].distribute(block);
-      insert_block(block, k, m, g);
-    }
-    vmult_kron(terms_full, g, Kg);
-    rhs -= Kg;
-  }
-  // C^T applied to each temporal block.
-  for (unsigned int k = 0; k < m; ++k)
-  {
-    extract_block(rhs, k, m, block);
-    space.constraints().condense(block);
-    insert_block(block, k, m, rhs);
-  }
   double setup_time = 0;
-  if (use_iterative && !lu_valid)
-    setup_time = solve_iterative(rhs, transpose);
-  else if (use_modes)
-    modes_lu.solve(rhs, transpose);
-  else
-    lu.solve(rhs, transpose);
-  U = rhs;
-  for (unsigned int k = 0; k < m; ++k)
+  if (!use_iterative || lu_valid) // by the factors (after a fallback: UMFPACK's)
   {
-    extract_block(U, k, m, block);
     if (transpose)
-      space.constraints().distribute(block);
+      direct_transposed(load, U);
     else
-      node_constraints[k].distribute(block);
-    insert_block(block, k, m, U);
+      solve_prepared(t0, load, U);
+  }
+  else
+  {
+    std::vector<AffineConstraints<double>> nodes;
+    if (transpose)
+    {
+      U = load;
+      on_blocks(U, basis.n_dofs(), space.n_dofs(),
+                [&](unsigned int, auto &b) { space.constraints().condense(b); });
+    }
+    else
+      U = lifted_load(t0, load, nodes);
+    setup_time = solve_iterative(U, transpose);
+    on_blocks(U, basis.n_dofs(), space.n_dofs(),
+              [&](unsigned int k, auto &b)
+              { transpose ? space.constraints().distribute(b) : nodes[k].distribute(b); });
   }
   time.solve += timer.wall_time() - setup_time;
   ++time.n_solves;

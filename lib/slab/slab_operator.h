@@ -16,6 +16,7 @@
 #include "space/space.h"
 #include "time/kronecker.h"
 #include "time/temporal_basis.h"
+#include "time/time_mesh.h"
 
 #include <atomic>
 #include <limits>
@@ -105,6 +106,18 @@ public:
   /// solver (whose back-substitutions only read the factors) each in its own thread.
   void solve_transposed(const std::vector<const dealii::Vector<double> *> &loads,
                         const std::vector<dealii::Vector<double> *> &U);
+
+  /// Whether prepare() keeps the present factorization on every slab of `mesh`:
+  /// coefficients constant in time, solver.reuse_factorization, the last prepare()'s slab
+  /// length on every slab, a direct solve (UMFPACK or the modes; not MUMPS) and not
+  /// transposed_only. Then solve_prepared() may run in another thread beside this
+  /// operator's solve(), solve_transposed() and prepare() calls on that mesh.
+  bool prepared_for(const TimeMesh &mesh) const;
+  /// K_n U = load on the slab (t_start, t_start + tau] as solve() does, by the present
+  /// factors and without changing the operator (its timings neither: the caller times
+  /// it). Requires prepared_for(the slab's mesh).
+  void solve_prepared(double t_start, const dealii::Vector<double> &load,
+                      dealii::Vector<double> &U) const;
 
   const SlabTimings &timings() const { return time; }
   dealii::types::global_dof_index n_slab_dofs() const
@@ -199,6 +212,12 @@ private:
   double solve_iterative_setup(int d, bool transpose);
   /// The direct transposed solve of solve() (reads the factors and the constraints only).
   void direct_transposed(const dealii::Vector<double> &load, dealii::Vector<double> &U) const;
+  /// C^T (load - K_full g) block by block: g the Dirichlet values u_D(t_start + s_k tau)
+  /// at the temporal nodes (the lift), `nodes` their constraints with the hanging nodes'
+  /// (one per temporal node, for distributing the solution).
+  dealii::Vector<double>
+  lifted_load(double t_start, const dealii::Vector<double> &load,
+              std::vector<dealii::AffineConstraints<double>> &nodes) const;
   void assemble_matrix();
   /// The Kronecker terms of K_n (full and condensed), the jump mass and the split for
   /// the Kronecker preconditioners; assembles the spatial matrices they need.
