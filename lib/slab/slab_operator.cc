@@ -429,8 +429,9 @@ void SlabOperator<dim>::direct_transposed(const Vector<double> &load, Vector<dou
 }
 
 template <int dim>
-Vector<double> SlabOperator<dim>::lifted_load(double t_start, const Vector<double> &load,
-                                              std::vector<AffineConstraints<double>> &nodes) const
+Vector<double>
+SlabOperator<dim>::lifted_load(double t_start, const Vector<double> &load,
+                               std::vector<std::map<types::global_dof_index, double>> &nodes) const
 {
   const unsigned int m = basis.n_dofs();
   nodes.resize(m);
@@ -439,8 +440,8 @@ Vector<double> SlabOperator<dim>::lifted_load(double t_start, const Vector<doubl
   on_blocks(g, m, space.n_dofs(),
             [&](unsigned int k, auto &b)
             {
-              space.make_dirichlet_constraints(t_start + basis.nodes()[k] * tau, nodes[k]);
-              nodes[k].distribute(b);
+              nodes[k] = space.dirichlet_values(t_start + basis.nodes()[k] * tau);
+              space.distribute_dirichlet(nodes[k], b);
             });
   vmult_kron(terms_full, g, Kg);
   rhs -= Kg;
@@ -464,14 +465,14 @@ template <int dim>
 void SlabOperator<dim>::solve_prepared(double t_start, const Vector<double> &load,
                                        Vector<double> &U) const
 {
-  std::vector<AffineConstraints<double>> nodes;
+  std::vector<std::map<types::global_dof_index, double>> nodes;
   U = lifted_load(t_start, load, nodes);
   if (use_modes)
     modes_lu.solve(U);
   else
     lu.solve(U);
   on_blocks(U, basis.n_dofs(), space.n_dofs(),
-            [&](unsigned int k, auto &b) { nodes[k].distribute(b); });
+            [&](unsigned int k, auto &b) { space.distribute_dirichlet(nodes[k], b); });
 }
 
 template <int dim>
@@ -515,7 +516,7 @@ void SlabOperator<dim>::solve(const Vector<double> &load, Vector<double> &U, boo
   }
   else
   {
-    std::vector<AffineConstraints<double>> nodes;
+    std::vector<std::map<types::global_dof_index, double>> nodes;
     if (transpose)
     {
       U = load;
@@ -527,7 +528,12 @@ void SlabOperator<dim>::solve(const Vector<double> &load, Vector<double> &U, boo
     setup_time = solve_iterative(U, transpose);
     on_blocks(U, basis.n_dofs(), space.n_dofs(),
               [&](unsigned int k, auto &b)
-              { transpose ? space.constraints().distribute(b) : nodes[k].distribute(b); });
+              {
+                if (transpose)
+                  space.constraints().distribute(b);
+                else
+                  space.distribute_dirichlet(nodes[k], b);
+              });
   }
   time.solve += timer.wall_time() - setup_time;
   ++time.n_solves;

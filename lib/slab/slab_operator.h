@@ -213,11 +213,12 @@ private:
   /// The direct transposed solve of solve() (reads the factors and the constraints only).
   void direct_transposed(const dealii::Vector<double> &load, dealii::Vector<double> &U) const;
   /// C^T (load - K_full g) block by block: g the Dirichlet values u_D(t_start + s_k tau)
-  /// at the temporal nodes (the lift), `nodes` their constraints with the hanging nodes'
-  /// (one per temporal node, for distributing the solution).
+  /// at the temporal nodes and the hanging nodes' that follow (the lift); `nodes` gets
+  /// those Dirichlet values (Space::dirichlet_values, one per temporal node, for
+  /// distributing the solution).
   dealii::Vector<double>
   lifted_load(double t_start, const dealii::Vector<double> &load,
-              std::vector<dealii::AffineConstraints<double>> &nodes) const;
+              std::vector<std::map<dealii::types::global_dof_index, double>> &nodes) const;
   void assemble_matrix();
   /// The Kronecker terms of K_n (full and condensed), the jump mass and the split for
   /// the Kronecker preconditioners; assembles the spatial matrices they need.

@@ -39,6 +39,8 @@ template <int dim> void Space<dim>::setup()
   }
   homogeneous.clear();
   DoFTools::make_hanging_node_constraints(dofs, homogeneous);
+  hanging.copy_from(homogeneous);
+  hanging.close();
   natural_outflow = false;
   if (!natural_rule)
     for (const auto id : scene.dirichlet_ids)
@@ -73,17 +75,29 @@ template <int dim> void Space<dim>::setup()
 }
 
 template <int dim>
-void Space<dim>::make_dirichlet_constraints(double t, AffineConstraints<double> &c) const
+std::map<types::global_dof_index, double> Space<dim>::dirichlet_values(double t) const
 {
-  c.clear();
-  DoFTools::make_hanging_node_constraints(dofs, c);
+  std::map<types::global_dof_index, double> values, of_id;
   for (const auto id : scene.dirichlet_ids)
   {
     const ScalarFunctionFromFunctionObject<dim> g(
         [&](const Point<dim> &x) { return scene.boundary_value(x, t, id); });
-    VectorTools::interpolate_boundary_values(map, dofs, id, g, c);
+    of_id.clear();
+    VectorTools::interpolate_boundary_values(map, dofs, id, g, of_id);
+    for (const auto &[i, value] : of_id)
+      if (!hanging.is_constrained(i))
+        values.insert({i, value}); // (an earlier id's value stays)
   }
-  c.close();
+  return values;
+}
+
+template <int dim>
+void Space<dim>::distribute_dirichlet(const std::map<types::global_dof_index, double> &values,
+                                      Vector<double> &v) const
+{
+  for (const auto &[i, value] : values)
+    v(i) = value;
+  hanging.distribute(v);
 }
 
 template <int dim>

@@ -82,8 +82,15 @@ public:
   /// Hanging nodes + homogeneous Dirichlet.
   const dealii::AffineConstraints<double> &constraints() const { return homogeneous; }
   const dealii::SparsityPattern &sparsity() const { return pattern; }
-  /// Hanging nodes + Dirichlet values u_D(., t).
-  void make_dirichlet_constraints(double t, dealii::AffineConstraints<double> &c) const;
+  /// The Dirichlet values u_D(., t) by DoF: the DoFs of every Dirichlet face (at a DoF
+  /// of two boundary ids the first id's value), the hanging nodes excepted.
+  std::map<dealii::types::global_dof_index, double> dirichlet_values(double t) const;
+  /// Sets v's constrained entries for the Dirichlet values `values` (dirichlet_values):
+  /// those at the Dirichlet DoFs, then the hanging nodes' from their parents; the other
+  /// entries stay. (What distribute() of the hanging-node and Dirichlet constraints does,
+  /// without building them for each time.)
+  void distribute_dirichlet(const std::map<dealii::types::global_dof_index, double> &values,
+                            dealii::Vector<double> &v) const;
 
   /// M(t), A(t) and their condensed forms on a slab of length tau (delta_K's bound).
   void assemble_matrices(double t, double tau, SpatialMatrices &m) const;
@@ -157,6 +164,7 @@ private:
   dealii::MappingQ<dim> map;
   dealii::DoFHandler<dim> dofs;
   dealii::AffineConstraints<double> homogeneous;
+  dealii::AffineConstraints<double> hanging; ///< the hanging nodes alone
   dealii::SparsityPattern pattern;
 
   /// sum_k f_k(x) (phi_i + delta_K b_k(x).grad phi_i) over the cells, one vector per
