@@ -379,9 +379,16 @@ INSTANTIATE_TEST_SUITE_P(R, AdjointGoal, ::testing::Values(0u, 1u, 2u));
 
 // goal_estimate = consistent with concurrent marches: a primal march by the adjoint's
 // factors in a second thread, beside the adjoint's transposed solves on the same
-// operator, gives the march of an operator of its own, and the adjoint is unchanged.
-TEST(Adjoint, PreparedPrimalMarchBesideTheAdjointEqualsItsOwn)
+// operator, gives the march of an operator of its own, and the adjoint is unchanged;
+// with the coupled UMFPACK factorization and with the temporal modes' factors.
+class PreparedMarch : public ::testing::TestWithParam<SolverType>
 {
+};
+
+TEST_P(PreparedMarch, BesideTheAdjointEqualsItsOwn)
+{
+  SlabSolverOptions options = SlabSolverOptions::direct(true);
+  options.type = GetParam();
   const auto scene = manufactured(); // (inhomogeneous Dirichlet values: the lift acts)
   Triangulation<2> tria;
   make_mesh(*scene, tria);
@@ -390,11 +397,11 @@ TEST(Adjoint, PreparedPrimalMarchBesideTheAdjointEqualsItsOwn)
   const TemporalBasis basis(1);
   const TimeMesh mesh = TimeMesh::uniform(0.5, 6);
   const GoalVectors j = assemble_goal_vectors(space, goals());
-  SlabOperator<2> own(space, basis, SlabSolverOptions::direct(true));
+  SlabOperator<2> own(space, basis, options);
   const auto U_own = march_primal(space, mesh, basis, own, MarchOptions{});
   const auto Z_own = march_adjoint(space, mesh, basis, own, j, MarchOptions{});
 
-  SlabOperator<2> op(space, basis, SlabSolverOptions::direct(true));
+  SlabOperator<2> op(space, basis, options);
   EXPECT_FALSE(op.prepared_for(mesh)); // (not factorized yet)
   EXPECT_THROW(march_primal_prepared(space, mesh, basis, op, MarchOptions{}), std::logic_error);
   const unsigned int last = mesh.n_slabs() - 1;
@@ -414,13 +421,14 @@ TEST(Adjoint, PreparedPrimalMarchBesideTheAdjointEqualsItsOwn)
     EXPECT_LE(d.linfty_norm(), 1e-13 * Z_own[n].linfty_norm()) << "slab " << n;
   }
   EXPECT_GT(U_own.back().linfty_norm(), 1e-2);
+  EXPECT_EQ(op.modes(), GetParam() == SolverType::modes);
 
   // not prepared for: slabs of another length, coefficients that depend on time, an
   // operator for transposed solves only
   TimeMesh uneven = mesh;
   uneven.t[1] = 0.5 * uneven.t[1];
   EXPECT_FALSE(op.prepared_for(uneven));
-  SlabSolverOptions transposed = SlabSolverOptions::direct(true);
+  SlabSolverOptions transposed = options;
   transposed.transposed_only = true;
   SlabOperator<2> adjoint_only(space, basis, transposed);
   adjoint_only.prepare(0., mesh.tau(0));
@@ -431,7 +439,10 @@ TEST(Adjoint, PreparedPrimalMarchBesideTheAdjointEqualsItsOwn)
   make_mesh(*rotating, tria_r);
   Space<2> space_r(*rotating, tria_r, 1, Stabilization{1.0, SupgLength::volume, 0.});
   space_r.setup();
-  SlabOperator<2> op_r(space_r, basis, SlabSolverOptions::direct(true));
+  SlabOperator<2> op_r(space_r, basis, options);
   op_r.prepare(0., mesh.tau(0));
   EXPECT_FALSE(op_r.prepared_for(mesh));
 }
+
+INSTANTIATE_TEST_SUITE_P(Solver, PreparedMarch,
+                         ::testing::Values(SolverType::direct, SolverType::modes));
