@@ -137,8 +137,9 @@ std::vector<Entry> adaptivity_entries()
        "once the adjoint is factorized, where one factorization serves every slab "
        "(coefficients constant in time, slabs of one length; time in t_primal), else "
        "the adjoint's thread after its solves (time in t_adjoint) (doc/results.md, 'Goal "
-       "estimates from the enriched primal'). Both imply per_goal_estimates; the DWR indicators still mark "
-       "the cells and the combined columns eta_h, I_eff stay theirs."},
+       "estimates from the enriched primal'). Both imply per_goal_estimates; the DWR "
+       "indicators still mark the cells and the combined columns eta_h, I_eff stay "
+       "theirs."},
       {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
        "March the adjoint(s) in a second thread while the primal marches (with "
        "goal.weights = auto and one adjoint for the weighted goal: assemble and "

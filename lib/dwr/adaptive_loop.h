@@ -35,13 +35,13 @@ using namespace dealii;
 
 constexpr double dwr_nan = std::numeric_limits<double>::quiet_NaN();
 
-/// The adjoint march of a loop: its slab operator, the adjoint slab solutions (one set
-/// per goal with goal.weights = estimate or per_goal_estimates, else one for the
-/// weighted goal) and its wall time.
 /// An adjoint operator that two threads may hold (goal_estimate = consistent: the
 /// primal thread marches u_q by its factors while the adjoint thread marches).
 using SharedOperator = std::shared_ptr<const SlabOperator<2>>;
 
+/// The adjoint march of a loop: its slab operator, the adjoint slab solutions (one set
+/// per goal with goal.weights = estimate or per_goal_estimates, else one for the
+/// weighted goal) and its wall time.
 struct AdjointMarch
 {
   std::shared_ptr<SlabOperator<2>> op;

@@ -319,13 +319,11 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
         [&](const MarchOptions &o)
         { return march_primal_prepared(adjoint, mesh, basis, *adjoint_op, o); },
         goals, opt);
-  const bool shared_march = adjoint_op != nullptr;
-  adjoint_op.reset(); // (the adjoint thread frees it)
   row.t_primal = t.wall_time();
   if (!concurrent)
     return AdjointMarch();
   AdjointMarch adj = adjoint_thread.get();
-  if (shared_march)
+  if (adjoint_op)
     adj.J_hi = std::move(J_hi);
   return adj;
 }

@@ -415,17 +415,36 @@ void on_blocks(Vector<double> &v, unsigned int m, types::global_dof_index n, con
 }
 } // namespace
 
+template <int dim> void SlabOperator<dim>::condense_blocks(Vector<double> &v) const
+{
+  on_blocks(v, basis.n_dofs(), space.n_dofs(),
+            [&](unsigned int, auto &b) { space.constraints().condense(b); });
+}
+
+template <int dim>
+void SlabOperator<dim>::distribute_blocks(
+    Vector<double> &U, const std::vector<std::map<types::global_dof_index, double>> *nodes) const
+{
+  on_blocks(U, basis.n_dofs(), space.n_dofs(),
+            [&](unsigned int k, auto &b)
+            {
+              if (nodes)
+                space.distribute_dirichlet((*nodes)[k], b);
+              else
+                space.constraints().distribute(b);
+            });
+}
+
 template <int dim>
 void SlabOperator<dim>::direct_transposed(const Vector<double> &load, Vector<double> &U) const
 {
-  const auto &c = space.constraints();
   U = load;
-  on_blocks(U, basis.n_dofs(), space.n_dofs(), [&](unsigned int, auto &b) { c.condense(b); });
+  condense_blocks(U);
   if (use_modes)
     modes_lu.solve(U, true);
   else
     lu.solve(U, true);
-  on_blocks(U, basis.n_dofs(), space.n_dofs(), [&](unsigned int, auto &b) { c.distribute(b); });
+  distribute_blocks(U, nullptr);
 }
 
 template <int dim>
@@ -445,8 +464,7 @@ SlabOperator<dim>::lifted_load(double t_start, const Vector<double> &load,
             });
   vmult_kron(terms_full, g, Kg);
   rhs -= Kg;
-  on_blocks(rhs, m, space.n_dofs(),
-            [&](unsigned int, auto &b) { space.constraints().condense(b); });
+  condense_blocks(rhs);
   return rhs;
 }
 
@@ -471,8 +489,7 @@ void SlabOperator<dim>::solve_prepared(double t_start, const Vector<double> &loa
     modes_lu.solve(U);
   else
     lu.solve(U);
-  on_blocks(U, basis.n_dofs(), space.n_dofs(),
-            [&](unsigned int k, auto &b) { space.distribute_dirichlet(nodes[k], b); });
+  distribute_blocks(U, &nodes);
 }
 
 template <int dim>
@@ -520,20 +537,12 @@ void SlabOperator<dim>::solve(const Vector<double> &load, Vector<double> &U, boo
     if (transpose)
     {
       U = load;
-      on_blocks(U, basis.n_dofs(), space.n_dofs(),
-                [&](unsigned int, auto &b) { space.constraints().condense(b); });
+      condense_blocks(U);
     }
     else
       U = lifted_load(t0, load, nodes);
     setup_time = solve_iterative(U, transpose);
-    on_blocks(U, basis.n_dofs(), space.n_dofs(),
-              [&](unsigned int k, auto &b)
-              {
-                if (transpose)
-                  space.constraints().distribute(b);
-                else
-                  space.distribute_dirichlet(nodes[k], b);
-              });
+    distribute_blocks(U, transpose ? nullptr : &nodes);
   }
   time.solve += timer.wall_time() - setup_time;
   ++time.n_solves;

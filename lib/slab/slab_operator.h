@@ -212,6 +212,14 @@ private:
   double solve_iterative_setup(int d, bool transpose);
   /// The direct transposed solve of solve() (reads the factors and the constraints only).
   void direct_transposed(const dealii::Vector<double> &load, dealii::Vector<double> &U) const;
+  /// C^T v on each temporal block (the homogeneous constraints), in place.
+  void condense_blocks(dealii::Vector<double> &v) const;
+  /// U's constrained entries on each temporal block: with `nodes` the Dirichlet values
+  /// at each temporal node and the hanging nodes' (lifted_load's), else the homogeneous
+  /// constraints' (the transposed solve).
+  void distribute_blocks(
+      dealii::Vector<double> &U,
+      const std::vector<std::map<dealii::types::global_dof_index, double>> *nodes) const;
   /// C^T (load - K_full g) block by block: g the Dirichlet values u_D(t_start + s_k tau)
   /// at the temporal nodes and the hanging nodes' that follow (the lift); `nodes` gets
   /// those Dirichlet values (Space::dirichlet_values, one per temporal node, for
