@@ -137,8 +137,12 @@ std::vector<Entry> adaptivity_entries()
        "once the adjoint is factorized, where one factorization serves every slab "
        "(coefficients constant in time, slabs of one length; time in t_primal), else "
        "the adjoint's thread after its solves (time in t_adjoint) (doc/results.md, 'Goal "
-       "estimates from the enriched primal'). Both imply per_goal_estimates; the DWR "
-       "indicators still mark the cells and the combined columns eta_h, I_eff stay "
+       "estimates from the enriched primal'). Both leave out of u_q a crosswind term "
+       "that no solution switches (s_K = 1 on every cell: crosswind_form = linear, or "
+       "the first loop of residual), an O(h) inconsistent diffusion whose error u_q "
+       "would share; consistent then solves the adjoint's operator without it by a "
+       "factorization of its own (doc/method.md §8). Both imply per_goal_estimates; the "
+       "DWR indicators still mark the cells and the combined columns eta_h, I_eff stay "
        "theirs."},
       {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
        "March the adjoint(s) in a second thread while the primal marches (with "

@@ -71,15 +71,15 @@ private:
   /// The primal march (U), the dG(r+1) primal of time_indicator = higher_order (U_hi)
   /// and the goal values; with row.concurrent the adjoint march(es) in a second thread,
   /// returned (else an empty AdjointMarch: the caller marches them after).
-  /// With row.concurrent and an `enriched` space, the primal thread then marches the
-  /// primal of degree q (march_enriched; its time is in t_primal); with row.concurrent
-  /// and goal_estimate = consistent it marches u_q by the adjoint's factors beside the
-  /// adjoints where that operator serves every slab (SlabOperator::prepared_for; time in
-  /// t_primal, values returned in J_hi).
+  /// With row.concurrent and a `uq_space` (own_uq_operator), the primal thread then
+  /// marches u_q on it by its own operator (march_own_uq; its time is in t_primal); with
+  /// row.concurrent and goal_estimate = consistent otherwise it marches u_q by the
+  /// adjoint's factors beside the adjoints where that operator serves every slab
+  /// (SlabOperator::prepared_for; time in t_primal, values returned in J_hi).
   AdjointMarch march_both(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint,
                           const MarchOptions &opt, std::vector<Vector<double>> &U,
                           const TemporalBasis &basis_hi, std::vector<Vector<double>> &U_hi,
-                          const Space<2> *enriched);
+                          const Space<2> *uq_space);
   /// NumericalError naming the loop (label) if an indicator or a goal value is NaN/Inf.
   void check_finite(const LoopRow &row, const Indicators<2> &ind,
                     const std::string &label) const;
@@ -118,21 +118,28 @@ private:
   /// The adjoint operator's figures into row (solver choice, factor size) and its
   /// factors and matrices freed; nothing if adj.op is already empty.
   void release_adjoint(LoopRow &row, AdjointMarch &adj);
-  /// adaptivity.goal_estimate = enriched: the space of degree q for march_enriched,
-  /// with the loop's crosswind factor (made before a second thread starts: the two
-  /// threads do not build spaces on the triangulation at once).
-  std::unique_ptr<Space<2>> make_enriched(const std::vector<double> &cw_scale) const;
-  /// adaptivity.goal_estimate = enriched: the primal marched once more in the adjoint's
-  /// degree q on the loop's meshes, its goal values into row.J_goal_hi
-  /// (estimate_by_goal forms the goals' estimates from them). `concurrent`: in the
-  /// primal thread while the adjoints march (no Trilinos, one BLAS thread). Returns its
-  /// wall time.
-  double march_enriched(LoopRow &row, const Space<2> &space, const MarchOptions &opt,
-                        bool concurrent) const;
+  /// Whether this loop's u_q marches by an operator of its own (march_own_uq):
+  /// goal_estimate = enriched, or consistent where the adjoint carries a crosswind term
+  /// that no solution switches (cw_scale empty: crosswind_form = linear, or the first
+  /// loop of residual), which u_q leaves out (make_uq_space).
+  bool own_uq_operator(const std::vector<double> &cw_scale) const;
+  /// The space of u_q for march_own_uq: enriched, the primal's stabilization in degree
+  /// q; consistent, the adjoint's space. Either with the loop's crosswind factor, or
+  /// without the term where no solution switches it: on every cell the term is an O(h)
+  /// inconsistent diffusion across b, and u_q would share the error it causes in u_h
+  /// (doc/results.md, "Goal estimates from the enriched primal"). Made before a second
+  /// thread starts: the two threads do not build spaces on the triangulation at once.
+  std::unique_ptr<Space<2>> make_uq_space(const std::vector<double> &cw_scale) const;
+  /// u_q marched on `space` by its own operator on the loop's meshes, its goal values
+  /// into row.J_goal_hi (estimate_by_goal forms the goals' estimates from them).
+  /// `concurrent`: in the primal thread while the adjoints march (no Trilinos, one BLAS
+  /// thread). Returns its wall time.
+  double march_own_uq(LoopRow &row, const Space<2> &space, const MarchOptions &opt,
+                      bool concurrent) const;
   /// The forward march of a primal of degree q with the given options.
   using DegreeQMarch = std::function<std::vector<Vector<double>>(const MarchOptions &)>;
   /// The goals' values (specs) of the primal of degree q on `space` that `march` gives
-  /// (enriched: by its own operator; consistent: by the adjoint's, untransposed); empty,
+  /// (march_own_uq: by its own operator; consistent: by the adjoint's, untransposed); empty,
   /// with a warning, where the march fails (NumericalError).
   std::vector<double> degree_q_goal_values(const Space<2> &space, const DegreeQMarch &march,
                                            const std::vector<GoalSpec> &specs,
@@ -166,6 +173,8 @@ private:
   const bool enriched;
   /// adaptivity.goal_estimate = consistent (implies by_goal)
   const bool consistent;
+  /// this loop's own_uq_operator (set before its marches)
+  bool own_uq = false;
   /// "exact" (the scene's exact solution), "goal.reference" or "none": where J_exact,
   /// and with it the error columns and I_eff, come from
   const std::string error_reference;

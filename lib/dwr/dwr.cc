@@ -187,6 +187,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &st
     check_goal_weights(primal, goals, goal_input(prm), *scene);
   if (!within_dof_budget(row, primal))
     return false;
+  own_uq = own_uq_operator(cw_scale);
   row.concurrent = check_loop_memory(row, primal, adjoint);
   MarchOptions opt;
   opt.label = "loop " + std::to_string(row.loop);
@@ -194,23 +195,23 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &st
   opt.growth_limit = prm.discretization.growth_limit;
   std::vector<Vector<double>> U, U_hi;
   const TemporalBasis basis_hi(prm.discretization.r + 1); // time_indicator = higher_order
-  // enriched with concurrent marches: its space made now, its march beside the adjoints
-  std::unique_ptr<Space<2>> enriched_space =
-      enriched && row.concurrent ? make_enriched(cw_scale) : nullptr;
-  AdjointMarch adj =
-      march_both(row, primal, adjoint, opt, U, basis_hi, U_hi, enriched_space.get());
-  enriched_space.reset();
+  // u_q by its own operator with concurrent marches: its space made now, its march
+  // beside the adjoints
+  std::unique_ptr<Space<2>> uq_space =
+      own_uq && row.concurrent ? make_uq_space(cw_scale) : nullptr;
+  AdjointMarch adj = march_both(row, primal, adjoint, opt, U, basis_hi, U_hi, uq_space.get());
+  uq_space.reset();
   const HigherOrderPrimal hi{basis_hi, U_hi};
   const HigherOrderPrimal *hi_ptr = U_hi.empty() ? nullptr : &hi;
   if (!row.concurrent)
     adj = march_adjoints(row.loop, adjoint, goals, opt, false);
-  if (enriched && !row.concurrent)
+  if (own_uq && !row.concurrent)
   {
     // (after the adjoint's factors: the two degree-q factorizations are not held at once)
     release_adjoint(row, adj);
-    row.t_estimate += march_enriched(row, *make_enriched(cw_scale), opt, false);
+    row.t_estimate += march_own_uq(row, *make_uq_space(cw_scale), opt, false);
   }
-  if (consistent)
+  if (consistent && !own_uq)
     row.J_goal_hi = std::move(adj.J_hi);
   estimate_from(row, ind, primal, adjoint, U, hi_ptr, std::move(adj));
   check_finite(row, ind, opt.label);
@@ -257,7 +258,7 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
                                       std::vector<Vector<double>> &U,
                                       const TemporalBasis &basis_hi,
                                       std::vector<Vector<double>> &U_hi,
-                                      const Space<2> *enriched_space)
+                                      const Space<2> *uq_space)
 {
   // The adjoint does not depend on the primal unless goal.weights = auto: with
   // concurrent marches it runs in a second thread while the primal marches (the
@@ -271,7 +272,8 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
   // (declared before the thread's future: it outlives the thread if the primal fails)
   std::promise<SharedOperator> share;
   std::future<SharedOperator> shared = share.get_future();
-  std::promise<SharedOperator> *share_ptr = consistent ? &share : nullptr;
+  const bool by_adjoint_factors = consistent && !own_uq;
+  std::promise<SharedOperator> *share_ptr = by_adjoint_factors ? &share : nullptr;
   std::future<AdjointMarch> adjoint_thread;
   struct Gate
   {
@@ -309,10 +311,10 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
   release_free_memory();
   evaluate_goals(row, primal, U);
   gate.release(true);
-  if (concurrent && enriched_space)
-    march_enriched(row, *enriched_space, opt, true); // (beside the adjoints)
+  if (concurrent && uq_space)
+    march_own_uq(row, *uq_space, opt, true); // (beside the adjoints)
   std::vector<double> J_hi;
-  SharedOperator adjoint_op = concurrent && consistent ? shared.get() : nullptr;
+  SharedOperator adjoint_op = concurrent && by_adjoint_factors ? shared.get() : nullptr;
   if (adjoint_op) // (beside the adjoints' solves, which only read the factors too)
     J_hi = degree_q_goal_values(
         adjoint,

@@ -73,7 +73,8 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   Timer t;
   AdjointMarch a;
   SlabSolverOptions options = march_solver_options(loop, "adjoint", concurrent);
-  options.transposed_only = !consistent; // (consistent: u_q solves it untransposed)
+  // (consistent: u_q solves it untransposed, unless it has an operator of its own)
+  options.transposed_only = !consistent || own_uq;
   a.op = std::make_shared<SlabOperator<2>>(adjoint, basis, options);
   // (prepared here, the march's first prepare() keeps the factors)
   const bool may_share = share && options.reuse_factorization &&
@@ -108,7 +109,7 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   else
     a.Z.push_back(
         march_adjoint(adjoint, mesh, basis, *a.op, assemble_goal_vectors(adjoint, specs), opt));
-  if (consistent && !shared) // u_q by the adjoint's factors (specs: this thread's goals)
+  if (consistent && !own_uq && !shared) // u_q by the adjoint's factors (specs: this thread's goals)
     a.J_hi = degree_q_goal_values(
         adjoint, [&](const MarchOptions &o) { return march_primal(adjoint, mesh, basis, *a.op, o); },
         specs, opt);
@@ -147,16 +148,23 @@ void AdaptiveLoop::release_adjoint(LoopRow &row, AdjointMarch &adj)
   release_free_memory();
 }
 
-std::unique_ptr<Space<2>>
-AdaptiveLoop::make_enriched(const std::vector<double> &cw_scale) const
+bool AdaptiveLoop::own_uq_operator(const std::vector<double> &cw_scale) const
 {
-  auto space = make_enriched_space(prm, *scene, tria, q);
-  space->set_crosswind_scale(cw_scale);
+  return enriched || (consistent && consistent_uq_needs_own_operator(prm, !cw_scale.empty()));
+}
+
+std::unique_ptr<Space<2>> AdaptiveLoop::make_uq_space(const std::vector<double> &cw_scale) const
+{
+  auto space = enriched ? make_enriched_space(prm, *scene, tria, q)
+                        : make_adjoint_space(prm, *scene, tria, q, goals);
+  // (an empty factor is s_K = 1 on every cell: no solution switches the term)
+  space->set_crosswind_scale(cw_scale.empty() ? std::vector<double>(tria.n_active_cells(), 0.)
+                                              : cw_scale);
   return space;
 }
 
-double AdaptiveLoop::march_enriched(LoopRow &row, const Space<2> &space,
-                                    const MarchOptions &opt, bool concurrent) const
+double AdaptiveLoop::march_own_uq(LoopRow &row, const Space<2> &space,
+                                  const MarchOptions &opt, bool concurrent) const
 {
   Timer t;
   row.J_goal_hi = degree_q_goal_values(
@@ -240,7 +248,7 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
   }
   if (estimate_weights)
     weigh_goals(row);
-  row.t_estimate += t.wall_time(); // (after march_enriched's time)
+  row.t_estimate += t.wall_time(); // (after march_own_uq's time)
 }
 
 void AdaptiveLoop::report_auto_choice(unsigned int loop, unsigned int problem,
@@ -260,6 +268,9 @@ bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
 {
   MemoryModel model = memory_model(prm, primal, &adjoint, row.n_t, base_mb,
                                    static_cast<unsigned int>(goals.size()));
+  // (u_q by an operator of its own: a second degree-q factorization, as enriched's)
+  model.enriched = own_uq;
+  model.consistent = consistent && !own_uq;
   const SlabSolverOptions options = slab_solver_options(prm);
   const bool higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
   model.concurrent =

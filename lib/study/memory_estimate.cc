@@ -321,9 +321,17 @@ void check_initial_mesh_memory(const Parameters &prm, const Scene<2> &scene,
   const SlabSystemSize adjoint =
       adjoint_degree > 0 ? predicted_system(cells, adjoint_degree, options, r, constant)
                          : SlabSystemSize();
-  const MemoryModel model =
-      memory_model(prm, primal, adjoint, !constant, prm.discretization.n_slabs,
-                   mpi_max(resident_memory_mb()), n_goals);
+  MemoryModel model = memory_model(prm, primal, adjoint, !constant, prm.discretization.n_slabs,
+                                   mpi_max(resident_memory_mb()), n_goals);
+  // loop 1's u_q: without a crosswind factor unless crosswind_first_solve gives one
+  if (model.consistent &&
+      consistent_uq_needs_own_operator(
+          prm, prm.discretization.crosswind_first_solve &&
+                   prm.discretization.crosswind_form == CrosswindForm::residual))
+  {
+    model.enriched = true;
+    model.consistent = false;
+  }
   // (the mesh is part of the calibrated bytes per DoF, at least one DoF per cell)
   const double estimate = estimate_memory(model).total_mb;
   std::ostringstream note;

@@ -191,6 +191,11 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
                                                                     : Space<2>::FaceRule());
 }
 
+bool consistent_uq_needs_own_operator(const Parameters &prm, bool switched)
+{
+  return prm.discretization.crosswind0 > 0. && prm.adaptivity.adjoint_crosswind && !switched;
+}
+
 std::vector<std::string> dwr_warnings(const Parameters &prm)
 {
   std::vector<std::string> w;

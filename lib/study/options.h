@@ -61,6 +61,11 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
                                              unsigned int degree,
                                              const std::vector<GoalSpec> &goals = {});
 
+/// goal_estimate = consistent: whether u_q needs an operator of its own because the
+/// adjoint carries a crosswind term that no solution switches (`switched`: the loop has
+/// a factor s_K from a solution), which u_q leaves out (doc/method.md §8).
+bool consistent_uq_needs_own_operator(const Parameters &prm, bool switched);
+
 /// Warnings on combinations of DWR keys that run but are known to mislead (each one
 /// line, naming the keys; empty if there are none). The loop prints them first.
 std::vector<std::string> dwr_warnings(const Parameters &prm);
