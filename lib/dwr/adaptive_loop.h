@@ -120,9 +120,9 @@ private:
   void release_adjoint(LoopRow &row, AdjointMarch &adj);
   /// Whether this loop's u_q marches by an operator of its own (march_own_uq):
   /// goal_estimate = enriched, or consistent where the adjoint carries a crosswind term
-  /// that no solution switches (cw_scale empty: crosswind_form = linear, or the first
-  /// loop of residual), which u_q leaves out (make_uq_space).
-  bool own_uq_operator(const std::vector<double> &cw_scale) const;
+  /// that no solution switches (crosswind_by_cell empty: crosswind_form = linear, or the
+  /// first loop of residual), which u_q leaves out (make_uq_space).
+  bool own_uq_operator() const;
   /// The space of u_q for march_own_uq: enriched, the primal's stabilization in degree
   /// q; consistent, the adjoint's space. Either with the loop's crosswind factor, or
   /// without the term where no solution switches it: on every cell the term is an O(h)
@@ -173,8 +173,6 @@ private:
   const bool enriched;
   /// adaptivity.goal_estimate = consistent (implies by_goal)
   const bool consistent;
-  /// this loop's own_uq_operator (set before its marches)
-  bool own_uq = false;
   /// "exact" (the scene's exact solution), "goal.reference" or "none": where J_exact,
   /// and with it the error columns and I_eff, come from
   const std::string error_reference;

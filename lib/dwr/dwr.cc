@@ -42,14 +42,6 @@ Balance balance(const LoopRow &row, const AdaptivitySection &a)
   return {!time_refined || space >= a.time_balance * time, time_refined};
 }
 
-/// Whether the loops switch the crosswind term by the last loop's residual
-/// (discretization.crosswind_form = residual with crosswind0 > 0).
-bool residual_crosswind(const Parameters &prm)
-{
-  return prm.discretization.crosswind0 > 0 &&
-         prm.discretization.crosswind_form == CrosswindForm::residual;
-}
-
 /// The scene of the run, with the output directory created first.
 std::unique_ptr<Scene<2>> scene_in_directory(const Parameters &prm)
 {
@@ -122,7 +114,7 @@ void AdaptiveLoop::run()
                 << "\n";
     print_loop_header(std::cout);
     base_mb = mpi_max(resident_memory_mb());
-    if (prm.discretization.crosswind_first_solve && residual_crosswind(prm))
+    if (first_loop_crosswind_switched(prm))
       first_crosswind_from_a_plain_solve();
     for (unsigned int loop = 1; loop <= prm.adaptivity.loops; ++loop)
     {
@@ -187,7 +179,7 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &st
     check_goal_weights(primal, goals, goal_input(prm), *scene);
   if (!within_dof_budget(row, primal))
     return false;
-  own_uq = own_uq_operator(cw_scale);
+  const bool own_uq = own_uq_operator();
   row.concurrent = check_loop_memory(row, primal, adjoint);
   MarchOptions opt;
   opt.label = "loop " + std::to_string(row.loop);
@@ -272,7 +264,7 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
   // (declared before the thread's future: it outlives the thread if the primal fails)
   std::promise<SharedOperator> share;
   std::future<SharedOperator> shared = share.get_future();
-  const bool by_adjoint_factors = consistent && !own_uq;
+  const bool by_adjoint_factors = consistent && !own_uq_operator();
   std::promise<SharedOperator> *share_ptr = by_adjoint_factors ? &share : nullptr;
   std::future<AdjointMarch> adjoint_thread;
   struct Gate

@@ -74,6 +74,7 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   AdjointMarch a;
   SlabSolverOptions options = march_solver_options(loop, "adjoint", concurrent);
   // (consistent: u_q solves it untransposed, unless it has an operator of its own)
+  const bool own_uq = own_uq_operator();
   options.transposed_only = !consistent || own_uq;
   a.op = std::make_shared<SlabOperator<2>>(adjoint, basis, options);
   // (prepared here, the march's first prepare() keeps the factors)
@@ -148,9 +149,10 @@ void AdaptiveLoop::release_adjoint(LoopRow &row, AdjointMarch &adj)
   release_free_memory();
 }
 
-bool AdaptiveLoop::own_uq_operator(const std::vector<double> &cw_scale) const
+bool AdaptiveLoop::own_uq_operator() const
 {
-  return enriched || (consistent && consistent_uq_needs_own_operator(prm, !cw_scale.empty()));
+  return enriched ||
+         (consistent && consistent_uq_needs_own_operator(prm, !crosswind_by_cell.empty()));
 }
 
 std::unique_ptr<Space<2>> AdaptiveLoop::make_uq_space(const std::vector<double> &cw_scale) const
@@ -269,8 +271,8 @@ bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
   MemoryModel model = memory_model(prm, primal, &adjoint, row.n_t, base_mb,
                                    static_cast<unsigned int>(goals.size()));
   // (u_q by an operator of its own: a second degree-q factorization, as enriched's)
-  model.enriched = own_uq;
-  model.consistent = consistent && !own_uq;
+  model.enriched = own_uq_operator();
+  model.consistent = consistent && !model.enriched;
   const SlabSolverOptions options = slab_solver_options(prm);
   const bool higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
   model.concurrent =

@@ -325,9 +325,7 @@ void check_initial_mesh_memory(const Parameters &prm, const Scene<2> &scene,
                                    mpi_max(resident_memory_mb()), n_goals);
   // loop 1's u_q: without a crosswind factor unless crosswind_first_solve gives one
   if (model.consistent &&
-      consistent_uq_needs_own_operator(
-          prm, prm.discretization.crosswind_first_solve &&
-                   prm.discretization.crosswind_form == CrosswindForm::residual))
+      consistent_uq_needs_own_operator(prm, first_loop_crosswind_switched(prm)))
   {
     model.enriched = true;
     model.consistent = false;

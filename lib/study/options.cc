@@ -191,6 +191,17 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
                                                                     : Space<2>::FaceRule());
 }
 
+bool residual_crosswind(const Parameters &prm)
+{
+  return prm.discretization.crosswind0 > 0 &&
+         prm.discretization.crosswind_form == CrosswindForm::residual;
+}
+
+bool first_loop_crosswind_switched(const Parameters &prm)
+{
+  return prm.discretization.crosswind_first_solve && residual_crosswind(prm);
+}
+
 bool consistent_uq_needs_own_operator(const Parameters &prm, bool switched)
 {
   return prm.discretization.crosswind0 > 0. && prm.adaptivity.adjoint_crosswind && !switched;
@@ -214,13 +225,11 @@ std::vector<std::string> dwr_warnings(const Parameters &prm)
   if (d.crosswind_form == CrosswindForm::residual && d.crosswind0 == 0.)
     w.push_back("discretization.crosswind_form = residual has no effect with "
                 "discretization.crosswind0 = 0 (the crosswind term is off)");
-  if (d.crosswind_first_solve &&
-      (d.crosswind_form != CrosswindForm::residual || d.crosswind0 == 0.))
+  if (d.crosswind_first_solve && !residual_crosswind(prm))
     w.push_back("discretization.crosswind_first_solve has no effect unless "
                 "discretization.crosswind_form = residual and discretization.crosswind0 > 0 "
                 "(it sets the first loop's residual switch)");
-  if (d.crosswind_exponent != 1. &&
-      (d.crosswind_form != CrosswindForm::residual || d.crosswind0 == 0.))
+  if (d.crosswind_exponent != 1. && !residual_crosswind(prm))
     w.push_back("discretization.crosswind_exponent has no effect unless "
                 "discretization.crosswind_form = residual and discretization.crosswind0 > 0 "
                 "(it is the power of the residual switch)");

@@ -61,6 +61,13 @@ std::unique_ptr<Space<2>> make_adjoint_space(const Parameters &prm, const Scene<
                                              unsigned int degree,
                                              const std::vector<GoalSpec> &goals = {});
 
+/// Whether the loops switch the crosswind term by the last loop's residual
+/// (discretization.crosswind_form = residual with crosswind0 > 0).
+bool residual_crosswind(const Parameters &prm);
+/// Whether the first DWR loop has a crosswind factor s_K from a solution
+/// (crosswind_first_solve with residual_crosswind); else s_K = 1 on every cell there.
+bool first_loop_crosswind_switched(const Parameters &prm);
+
 /// goal_estimate = consistent: whether u_q needs an operator of its own because the
 /// adjoint carries a crosswind term that no solution switches (`switched`: the loop has
 /// a factor s_K from a solution), which u_q leaves out (doc/method.md §8).
