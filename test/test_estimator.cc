@@ -802,6 +802,27 @@ TEST(LoopRow, EtaGoalsMaxTakesTheLargestWeightedGoalEstimate)
   EXPECT_DOUBLE_EQ(row.eta_goals_max(), 0.15);
 }
 
+// adaptivity.goal_estimate = both: per goal the u_q whose value is farthest from J_i(u_h),
+// whichever side; a u_q without a value per goal (its march failed) is passed over, and
+// none leaves J_goal_hi empty (the DWR's estimates).
+TEST(LoopRow, PickGoalHiTakesTheLargerEstimatePerGoal)
+{
+  LoopRow row;
+  row.J_goal = {1.0, -2.0, 0.5};
+  row.J_uq = {{1.2, -2.5, 0.4}, {}, {0.7, -2.1, 0.6}};
+  row.pick_goal_hi();
+  ASSERT_EQ(row.J_goal_hi.size(), 3u);
+  EXPECT_DOUBLE_EQ(row.J_goal_hi[0], 0.7);  // |-0.3| > |0.2|
+  EXPECT_DOUBLE_EQ(row.J_goal_hi[1], -2.5); // |-0.5| > |-0.1|
+  EXPECT_DOUBLE_EQ(row.J_goal_hi[2], 0.4);  // a tie keeps the first
+  row.J_uq = {{1.1, -2.2, 0.3}};
+  row.pick_goal_hi();
+  EXPECT_EQ(row.J_goal_hi, (std::vector<double>{1.1, -2.2, 0.3}));
+  row.J_uq = {{}, {1.0}};
+  row.pick_goal_hi();
+  EXPECT_TRUE(row.J_goal_hi.empty());
+}
+
 // adaptivity.tolerance_drift: the corrected goal values J_i + eta_i of two loops. Exact
 // estimates (J_i + eta_i = J_i(u) on both loops) give 0; otherwise the sum over the goals
 // of |w_i| times the change, with the later loop's weights; the weighted goal's own

@@ -53,7 +53,11 @@ enum class GoalEstimate
   /// (degree q, the adjoint's stabilization) untransposed, by its factorization after
   /// the adjoints: the residual of u_h in the adjoint's stabilized form weighted by z_i
   /// itself, the DWR identity without the interpolant and the stabilizations' mismatch.
-  consistent
+  consistent,
+  /// both u_q (enriched's and consistent's), each goal's estimate the larger in size:
+  /// two references stabilized differently, the stop waits until neither sees an error
+  /// above the tolerance
+  both
 };
 
 inline const std::vector<Named<GoalEstimate>> &names(GoalEstimate)
@@ -61,7 +65,8 @@ inline const std::vector<Named<GoalEstimate>> &names(GoalEstimate)
   static const std::vector<Named<GoalEstimate>> table{
       {GoalEstimate::dwr, "dwr"},
       {GoalEstimate::enriched, "enriched"},
-      {GoalEstimate::consistent, "consistent"}};
+      {GoalEstimate::consistent, "consistent"},
+      {GoalEstimate::both, "both"}};
   return table;
 }
 

@@ -46,8 +46,8 @@ struct AdjointMarch
 {
   std::shared_ptr<SlabOperator<2>> op;
   std::vector<std::vector<Vector<double>>> Z;
-  /// goal_estimate = consistent: each goal's value of u_q (the adjoint's operator solved
-  /// untransposed); empty otherwise and where that march failed
+  /// goal_estimate = consistent or both: each goal's value of u_q (the adjoint's operator
+  /// solved untransposed); empty otherwise and where that march failed
   std::vector<double> J_hi;
   double wall = 0;
 };
@@ -71,15 +71,15 @@ private:
   /// The primal march (U), the dG(r+1) primal of time_indicator = higher_order (U_hi)
   /// and the goal values; with row.concurrent the adjoint march(es) in a second thread,
   /// returned (else an empty AdjointMarch: the caller marches them after).
-  /// With row.concurrent and a `uq_space` (own_uq_operator), the primal thread then
-  /// marches u_q on it by its own operator (march_own_uq; its time is in t_primal); with
-  /// row.concurrent and goal_estimate = consistent otherwise it marches u_q by the
+  /// With row.concurrent and `uq_spaces` (own_uq_operator), the primal thread then
+  /// marches a u_q on each by its own operator (march_own_uq; its time is in t_primal);
+  /// with row.concurrent and uq_by_adjoint_factors it marches consistent's u_q by the
   /// adjoint's factors beside the adjoints where that operator serves every slab
   /// (SlabOperator::prepared_for; time in t_primal, values returned in J_hi).
   AdjointMarch march_both(LoopRow &row, const Space<2> &primal, const Space<2> &adjoint,
                           const MarchOptions &opt, std::vector<Vector<double>> &U,
                           const TemporalBasis &basis_hi, std::vector<Vector<double>> &U_hi,
-                          const Space<2> *uq_space);
+                          const std::vector<std::unique_ptr<Space<2>>> &uq_spaces);
   /// NumericalError naming the loop (label) if an indicator or a goal value is NaN/Inf.
   void check_finite(const LoopRow &row, const Indicators<2> &ind,
                     const std::string &label) const;
@@ -118,24 +118,30 @@ private:
   /// The adjoint operator's figures into row (solver choice, factor size) and its
   /// factors and matrices freed; nothing if adj.op is already empty.
   void release_adjoint(LoopRow &row, AdjointMarch &adj);
-  /// Whether this loop's u_q marches by an operator of its own (march_own_uq):
-  /// goal_estimate = enriched, or consistent where the adjoint carries a crosswind term
-  /// that no solution switches (crosswind_by_cell empty: crosswind_form = linear, or the
-  /// first loop of residual), which u_q leaves out (make_uq_space).
+  /// Whether consistent's u_q marches by an operator of its own: where the adjoint
+  /// carries a crosswind term that no solution switches (crosswind_by_cell empty:
+  /// crosswind_form = linear, or the first loop of residual), which u_q leaves out
+  /// (make_uq_spaces).
+  bool consistent_by_own_operator() const;
+  /// Whether this loop marches a u_q by an operator of its own (march_own_uq): enriched's,
+  /// or consistent's by consistent_by_own_operator.
   bool own_uq_operator() const;
-  /// The space of u_q for march_own_uq: enriched, the primal's stabilization in degree
-  /// q; consistent, the adjoint's space. Either with the loop's crosswind factor, or
-  /// without the term where no solution switches it: on every cell the term is an O(h)
-  /// inconsistent diffusion across b, and u_q would share the error it causes in u_h
-  /// (doc/results.md, "Goal estimates from the enriched primal"). Made before a second
-  /// thread starts: the two threads do not build spaces on the triangulation at once.
-  std::unique_ptr<Space<2>> make_uq_space(const std::vector<double> &cw_scale) const;
-  /// u_q marched on `space` by its own operator on the loop's meshes, its goal values
-  /// into row.J_goal_hi (estimate_by_goal forms the goals' estimates from them).
-  /// `concurrent`: in the primal thread while the adjoints march (no Trilinos, one BLAS
-  /// thread). Returns its wall time.
-  double march_own_uq(LoopRow &row, const Space<2> &space, const MarchOptions &opt,
-                      bool concurrent) const;
+  /// Whether consistent's u_q marches by the adjoint's factors, untransposed.
+  bool uq_by_adjoint_factors() const;
+  /// The spaces of the u_q that march by operators of their own (march_own_uq):
+  /// enriched's, the primal's stabilization in degree q; consistent's, the adjoint's
+  /// space. Either with the loop's crosswind factor, or without the term where no
+  /// solution switches it: on every cell the term is an O(h) inconsistent diffusion
+  /// across b, and u_q would share the error it causes in u_h (doc/results.md, "Goal
+  /// estimates from the enriched primal"). Made before a second thread starts: the two
+  /// threads do not build spaces on the triangulation at once.
+  std::vector<std::unique_ptr<Space<2>>> make_uq_spaces(const std::vector<double> &cw_scale) const;
+  /// A u_q marched on each of `spaces` by its own operator on the loop's meshes (one
+  /// after the other), their goal values appended to row.J_uq (estimate_by_goal forms
+  /// the goals' estimates from them). `concurrent`: in the primal thread while the
+  /// adjoints march (no Trilinos, one BLAS thread). Returns its wall time.
+  double march_own_uq(LoopRow &row, const std::vector<std::unique_ptr<Space<2>>> &spaces,
+                      const MarchOptions &opt, bool concurrent) const;
   /// The forward march of a primal of degree q with the given options.
   using DegreeQMarch = std::function<std::vector<Vector<double>>(const MarchOptions &)>;
   /// The goals' values (specs) of the primal of degree q on `space` that `march` gives
@@ -169,9 +175,9 @@ private:
   /// one adjoint and one estimate per goal, the combined indicators their weighted sum
   /// (goal.weights = estimate or adaptivity.per_goal_estimates)
   const bool by_goal;
-  /// adaptivity.goal_estimate = enriched (implies by_goal)
+  /// adaptivity.goal_estimate = enriched or both: enriched's u_q (implies by_goal)
   const bool enriched;
-  /// adaptivity.goal_estimate = consistent (implies by_goal)
+  /// adaptivity.goal_estimate = consistent or both: consistent's u_q (implies by_goal)
   const bool consistent;
   /// "exact" (the scene's exact solution), "goal.reference" or "none": where J_exact,
   /// and with it the error columns and I_eff, come from

@@ -58,8 +58,10 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
       by_goal(estimate_weights || prm.adaptivity.per_goal_estimates ||
               prm.adaptivity.tolerance_measure == ToleranceMeasure::goals ||
               prm.adaptivity.goal_estimate != GoalEstimate::dwr),
-      enriched(prm.adaptivity.goal_estimate == GoalEstimate::enriched),
-      consistent(prm.adaptivity.goal_estimate == GoalEstimate::consistent),
+      enriched(prm.adaptivity.goal_estimate == GoalEstimate::enriched ||
+               prm.adaptivity.goal_estimate == GoalEstimate::both),
+      consistent(prm.adaptivity.goal_estimate == GoalEstimate::consistent ||
+                 prm.adaptivity.goal_estimate == GoalEstimate::both),
       error_reference(scene->exact()                      ? "exact"
                       : std::isnan(goals.front().reference) ? "none"
                                                             : "goal.reference"),
@@ -189,10 +191,11 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &st
   const TemporalBasis basis_hi(prm.discretization.r + 1); // time_indicator = higher_order
   // u_q by its own operator with concurrent marches: its space made now, its march
   // beside the adjoints
-  std::unique_ptr<Space<2>> uq_space =
-      own_uq && row.concurrent ? make_uq_space(cw_scale) : nullptr;
-  AdjointMarch adj = march_both(row, primal, adjoint, opt, U, basis_hi, U_hi, uq_space.get());
-  uq_space.reset();
+  std::vector<std::unique_ptr<Space<2>>> uq_spaces;
+  if (own_uq && row.concurrent)
+    uq_spaces = make_uq_spaces(cw_scale);
+  AdjointMarch adj = march_both(row, primal, adjoint, opt, U, basis_hi, U_hi, uq_spaces);
+  uq_spaces.clear();
   const HigherOrderPrimal hi{basis_hi, U_hi};
   const HigherOrderPrimal *hi_ptr = U_hi.empty() ? nullptr : &hi;
   if (!row.concurrent)
@@ -201,10 +204,10 @@ bool AdaptiveLoop::solve_and_estimate(LoopRow &row, Indicators<2> &ind, bool &st
   {
     // (after the adjoint's factors: the two degree-q factorizations are not held at once)
     release_adjoint(row, adj);
-    row.t_estimate += march_own_uq(row, *make_uq_space(cw_scale), opt, false);
+    row.t_estimate += march_own_uq(row, make_uq_spaces(cw_scale), opt, false);
   }
-  if (consistent && !own_uq)
-    row.J_goal_hi = std::move(adj.J_hi);
+  if (uq_by_adjoint_factors())
+    row.J_uq.push_back(std::move(adj.J_hi));
   estimate_from(row, ind, primal, adjoint, U, hi_ptr, std::move(adj));
   check_finite(row, ind, opt.label);
   if (prm.adaptivity.measure_time_error)
@@ -250,7 +253,7 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
                                       std::vector<Vector<double>> &U,
                                       const TemporalBasis &basis_hi,
                                       std::vector<Vector<double>> &U_hi,
-                                      const Space<2> *uq_space)
+                                      const std::vector<std::unique_ptr<Space<2>>> &uq_spaces)
 {
   // The adjoint does not depend on the primal unless goal.weights = auto: with
   // concurrent marches it runs in a second thread while the primal marches (the
@@ -264,7 +267,7 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
   // (declared before the thread's future: it outlives the thread if the primal fails)
   std::promise<SharedOperator> share;
   std::future<SharedOperator> shared = share.get_future();
-  const bool by_adjoint_factors = consistent && !own_uq_operator();
+  const bool by_adjoint_factors = uq_by_adjoint_factors();
   std::promise<SharedOperator> *share_ptr = by_adjoint_factors ? &share : nullptr;
   std::future<AdjointMarch> adjoint_thread;
   struct Gate
@@ -303,8 +306,8 @@ AdjointMarch AdaptiveLoop::march_both(LoopRow &row, const Space<2> &primal,
   release_free_memory();
   evaluate_goals(row, primal, U);
   gate.release(true);
-  if (concurrent && uq_space)
-    march_own_uq(row, *uq_space, opt, true); // (beside the adjoints)
+  if (concurrent && !uq_spaces.empty())
+    march_own_uq(row, uq_spaces, opt, true); // (beside the adjoints)
   std::vector<double> J_hi;
   SharedOperator adjoint_op = concurrent && by_adjoint_factors ? shared.get() : nullptr;
   if (adjoint_op) // (beside the adjoints' solves, which only read the factors too)

@@ -74,8 +74,8 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   AdjointMarch a;
   SlabSolverOptions options = march_solver_options(loop, "adjoint", concurrent);
   // (consistent: u_q solves it untransposed, unless it has an operator of its own)
-  const bool own_uq = own_uq_operator();
-  options.transposed_only = !consistent || own_uq;
+  const bool by_factors = uq_by_adjoint_factors();
+  options.transposed_only = !by_factors;
   a.op = std::make_shared<SlabOperator<2>>(adjoint, basis, options);
   // (prepared here, the march's first prepare() keeps the factors)
   const bool may_share = share && options.reuse_factorization &&
@@ -110,7 +110,7 @@ AdjointMarch AdaptiveLoop::march_adjoints(unsigned int loop, const Space<2> &adj
   else
     a.Z.push_back(
         march_adjoint(adjoint, mesh, basis, *a.op, assemble_goal_vectors(adjoint, specs), opt));
-  if (consistent && !own_uq && !shared) // u_q by the adjoint's factors (specs: this thread's goals)
+  if (by_factors && !shared) // u_q by the adjoint's factors (specs: this thread's goals)
     a.J_hi = degree_q_goal_values(
         adjoint, [&](const MarchOptions &o) { return march_primal(adjoint, mesh, basis, *a.op, o); },
         specs, opt);
@@ -149,35 +149,53 @@ void AdaptiveLoop::release_adjoint(LoopRow &row, AdjointMarch &adj)
   release_free_memory();
 }
 
+bool AdaptiveLoop::consistent_by_own_operator() const
+{
+  return consistent && consistent_uq_needs_own_operator(prm, !crosswind_by_cell.empty());
+}
+
 bool AdaptiveLoop::own_uq_operator() const
 {
-  return enriched ||
-         (consistent && consistent_uq_needs_own_operator(prm, !crosswind_by_cell.empty()));
+  return enriched || consistent_by_own_operator();
 }
 
-std::unique_ptr<Space<2>> AdaptiveLoop::make_uq_space(const std::vector<double> &cw_scale) const
+bool AdaptiveLoop::uq_by_adjoint_factors() const
 {
-  auto space = enriched ? make_enriched_space(prm, *scene, tria, q)
-                        : make_adjoint_space(prm, *scene, tria, q, goals);
-  // (an empty factor is s_K = 1 on every cell: no solution switches the term)
-  space->set_crosswind_scale(cw_scale.empty() ? std::vector<double>(tria.n_active_cells(), 0.)
-                                              : cw_scale);
-  return space;
+  return consistent && !consistent_by_own_operator();
 }
 
-double AdaptiveLoop::march_own_uq(LoopRow &row, const Space<2> &space,
+std::vector<std::unique_ptr<Space<2>>>
+AdaptiveLoop::make_uq_spaces(const std::vector<double> &cw_scale) const
+{
+  std::vector<std::unique_ptr<Space<2>>> spaces;
+  if (enriched)
+    spaces.push_back(make_enriched_space(prm, *scene, tria, q));
+  if (consistent_by_own_operator())
+    spaces.push_back(make_adjoint_space(prm, *scene, tria, q, goals));
+  // (an empty factor is s_K = 1 on every cell: no solution switches the term)
+  for (auto &space : spaces)
+    space->set_crosswind_scale(
+        cw_scale.empty() ? std::vector<double>(tria.n_active_cells(), 0.) : cw_scale);
+  return spaces;
+}
+
+double AdaptiveLoop::march_own_uq(LoopRow &row,
+                                  const std::vector<std::unique_ptr<Space<2>>> &spaces,
                                   const MarchOptions &opt, bool concurrent) const
 {
   Timer t;
-  row.J_goal_hi = degree_q_goal_values(
-      space,
-      [&](const MarchOptions &o)
-      {
-        SlabOperator<2> op(space, basis, march_solver_options(0, "", concurrent));
-        return march_primal(space, mesh, basis, op, o);
-      },
-      goals, opt);
-  release_free_memory();
+  for (const auto &space : spaces)
+  {
+    row.J_uq.push_back(degree_q_goal_values(
+        *space,
+        [&](const MarchOptions &o)
+        {
+          SlabOperator<2> op(*space, basis, march_solver_options(0, "", concurrent));
+          return march_primal(*space, mesh, basis, op, o);
+        },
+        goals, opt));
+    release_free_memory();
+  }
   return t.wall_time();
 }
 
@@ -232,11 +250,12 @@ void AdaptiveLoop::estimate_by_goal(LoopRow &row, Indicators<2> &ind,
                     hi, prm.adaptivity.space_indicator, data_quadrature(prm.adaptivity),
                     prm.adaptivity.conforming_weights);
   Z.clear();
+  row.pick_goal_hi();
   for (std::size_t i = 0; i < goals.size(); ++i)
   {
     const Indicators<2> &part = parts[i];
     add_goal_estimate(row, part);
-    if (!row.J_goal_hi.empty()) // enriched: the spatial part from the primal of degree q
+    if (!row.J_goal_hi.empty()) // goal_estimate: the spatial part from a primal of degree q
       row.eta_goal[i] = row.J_goal_hi[i] - row.J_goal[i] + row.eta_goal_parts[i][2];
     if (estimate_weights)
     {
@@ -272,7 +291,7 @@ bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
                                    static_cast<unsigned int>(goals.size()));
   // (u_q by an operator of its own: a second degree-q factorization, as enriched's)
   model.enriched = own_uq_operator();
-  model.consistent = consistent && !model.enriched;
+  model.consistent = uq_by_adjoint_factors();
   const SlabSolverOptions options = slab_solver_options(prm);
   const bool higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
   model.concurrent =

@@ -127,7 +127,7 @@ double abs_parts(const LoopRow &row, unsigned int first, unsigned int last)
 
 double LoopRow::eta_space_abs() const
 {
-  // adaptivity.goal_estimate = enriched: each goal's spatial estimate is one number
+  // adaptivity.goal_estimate other than dwr: each goal's spatial estimate is one number
   if (!J_goal_hi.empty() && J_goal_hi.size() == weights.size())
   {
     double sum = 0;
@@ -141,6 +141,22 @@ double LoopRow::eta_space_abs() const
 double LoopRow::eta_time_abs() const
 {
   return abs_parts(*this, 2, 3);
+}
+
+void LoopRow::pick_goal_hi()
+{
+  J_goal_hi.clear();
+  for (const std::vector<double> &J : J_uq)
+  {
+    if (J.size() != J_goal.size())
+      continue; // (a failed march)
+    if (J_goal_hi.empty())
+      J_goal_hi = J;
+    else
+      for (std::size_t g = 0; g < J.size(); ++g)
+        if (std::abs(J[g] - J_goal[g]) > std::abs(J_goal_hi[g] - J_goal[g]))
+          J_goal_hi[g] = J[g];
+  }
 }
 
 /// Columns after `columns` in loops.csv: the signed error J_i(u) - J_i(u_tau h) of each

@@ -52,9 +52,13 @@ struct LoopRow
   /// the same goals' parts eta_h,x, eta_h,y, eta_tau (signed), so that cancellation
   /// between them is visible per goal
   std::vector<std::array<double, 3>> eta_goal_parts;
-  /// adaptivity.goal_estimate = enriched: J_i of the primal marched in the adjoint's
-  /// degree q (empty otherwise); eta_goal's spatial part is J_goal_hi - J_goal
+  /// adaptivity.goal_estimate other than dwr: J_i of the primal marched in the
+  /// adjoint's degree q (empty otherwise); eta_goal's spatial part is J_goal_hi - J_goal
   std::vector<double> J_goal_hi;
+  /// The goal values of each u_q marched (goal_estimate = both: enriched's and
+  /// consistent's; one otherwise; an entry empty where its march failed). pick_goal_hi
+  /// forms J_goal_hi from them.
+  std::vector<std::vector<double>> J_uq;
   /// the cells of the refinement that follows this loop (zeros on the last): marked,
   /// cut in x only, in y only, in both, flagged or extended by the closure
   std::array<unsigned int, 5> marking{};
@@ -75,13 +79,17 @@ struct LoopRow
   double eta_parts_abs() const;
   /// The spatial and the temporal share of eta_parts_abs(): |eta_h,x| + |eta_h,y| and
   /// |eta_tau|, per goal weighted by |w_i| when every goal has its own parts; with
-  /// J_goal_hi (adaptivity.goal_estimate = enriched) the spatial share is
+  /// J_goal_hi (adaptivity.goal_estimate other than dwr) the spatial share is
   /// sum_i |w_i (J_goal_hi_i - J_goal_i)|.
   double eta_space_abs() const;
   /// max_i |w_i eta_i| over the goals' own estimates (eta_goal), or |eta_tau h| of the
   /// weighted goal where the goals have none; adaptivity.tolerance_measure = goals.
   double eta_goals_max() const;
   double eta_time_abs() const;
+  /// J_goal_hi_i: of the u_q in J_uq with a value per goal, the one farthest from
+  /// J_goal_i (goal_estimate = both: each goal's estimate the larger in size); empty if
+  /// none has one.
+  void pick_goal_hi();
   /// The first 18 columns of loop_columns.
   std::vector<double> values() const;
   /// values() followed by the columns loop_columns adds for the goals

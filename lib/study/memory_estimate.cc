@@ -270,8 +270,9 @@ MemoryModel memory_model(const Parameters &prm, const SlabSystemSize &primal,
     m.higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
     if (m.higher_order)
       m.higher_order_slabs = (n_slabs * (r + 2) + r) / (r + 1);
-    m.enriched = prm.adaptivity.goal_estimate == GoalEstimate::enriched;
-    m.consistent = prm.adaptivity.goal_estimate == GoalEstimate::consistent;
+    const GoalEstimate e = prm.adaptivity.goal_estimate;
+    m.enriched = e == GoalEstimate::enriched || e == GoalEstimate::both;
+    m.consistent = e == GoalEstimate::consistent || e == GoalEstimate::both;
   }
   m.base_mb = base_mb;
   return m;

@@ -51,11 +51,11 @@ struct MemoryModel
   /// The primal and the adjoint marched at the same time (adaptivity.concurrent_marches):
   /// the primal thread's operators (dG(r), then dG(r+1)) beside the adjoint's.
   bool concurrent = false;
-  /// adaptivity.goal_estimate = enriched: the primal marched once more in the adjoint's
+  /// adaptivity.goal_estimate = enriched or both: the primal marched once more in the adjoint's
   /// degree (an operator of the adjoint's size and its slab solutions), after the
   /// adjoints, or in the primal thread while they march when `concurrent`.
   bool enriched = false;
-  /// adaptivity.goal_estimate = consistent: u_q's slab solutions, marched after the
+  /// adaptivity.goal_estimate = consistent or both: u_q's slab solutions, marched after the
   /// adjoints with their operator (no operator of its own)
   bool consistent = false;
 };
