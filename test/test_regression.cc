@@ -191,7 +191,7 @@ TEST(Regression, HemkerFirstTenLoops)
 {
   // config/hemker.json (four global refinements and the wall layer, delta0 = 1, bulk
   // marking, theta_h = 0.7): loops 1-10, up to N_space ~18,400
-  // (goal_estimate = consistent: each goal's value of degree 2 and its estimate too)
+  // (goal_estimate = both: each goal's value of degree 2 and its estimate too)
   check_hemker("hemker.json", "hemker", 10, 14425,
                {"J_hi_u_xe1_I", "J_hi_u_xe2_I", "eta_u_xe1_I", "eta_u_xe2_I"});
 }

@@ -141,9 +141,13 @@ std::vector<Entry> adaptivity_entries()
        "that no solution switches (s_K = 1 on every cell: crosswind_form = linear, or "
        "the first loop of residual), an O(h) inconsistent diffusion whose error u_q "
        "would share; consistent then solves the adjoint's operator without it by a "
-       "factorization of its own (doc/method.md §8). Both imply per_goal_estimates; the "
-       "DWR indicators still mark the cells and the combined columns eta_h, I_eff stay "
-       "theirs."},
+       "factorization of its own (doc/method.md §8). both: enriched's and consistent's u_q "
+       "on the same loop, each goal's estimate the larger in size of the two (loops.csv "
+       "J_hi_<goal> the u_q it took): two references stabilized differently, so that "
+       "a pre-asymptotic loop that one of them does not see still has its error "
+       "estimated; costs enriched's march besides consistent's. All but dwr imply "
+       "per_goal_estimates; the DWR indicators still mark the cells and the combined "
+       "columns eta_h, I_eff stay theirs."},
       {"adaptivity", "concurrent_marches", "true", m(&S::concurrent_marches), boolean,
        "March the adjoint(s) in a second thread while the primal marches (with "
        "goal.weights = auto and one adjoint for the weighted goal: assemble and "
