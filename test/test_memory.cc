@@ -118,6 +118,14 @@ TEST(MemoryEstimate, DegreeQPrimalOfTheGoalEstimates)
     EXPECT_GT(c.total_mb, m.base_mb + c.stored_solutions_mb + 8. * 2 * 4e5 * 36 / MB);
     EXPECT_LE(c.total_mb, enriched_total[false]);
     EXPECT_LT(c.total_mb, enriched_total[true]);
+    // goal_estimate = both: enriched's operator and u_q and consistent's u_q: at least
+    // enriched's peak, with or without concurrent marches
+    for (const bool concurrent : {false, true})
+    {
+      m.concurrent = concurrent;
+      m.enriched = true;
+      EXPECT_GE(estimate_memory(m).total_mb, enriched_total[concurrent]);
+    }
   }
 }
 
