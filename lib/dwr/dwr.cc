@@ -58,10 +58,7 @@ AdaptiveLoop::AdaptiveLoop(const Parameters &prm)
       by_goal(estimate_weights || prm.adaptivity.per_goal_estimates ||
               prm.adaptivity.tolerance_measure == ToleranceMeasure::goals ||
               prm.adaptivity.goal_estimate != GoalEstimate::dwr),
-      enriched(prm.adaptivity.goal_estimate == GoalEstimate::enriched ||
-               prm.adaptivity.goal_estimate == GoalEstimate::both),
-      consistent(prm.adaptivity.goal_estimate == GoalEstimate::consistent ||
-                 prm.adaptivity.goal_estimate == GoalEstimate::both),
+      enriched(marches_enriched_uq(prm)), consistent(marches_consistent_uq(prm)),
       error_reference(scene->exact()                      ? "exact"
                       : std::isnan(goals.front().reference) ? "none"
                                                             : "goal.reference"),

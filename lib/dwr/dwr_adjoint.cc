@@ -290,8 +290,7 @@ bool AdaptiveLoop::check_loop_memory(LoopRow &row, const Space<2> &primal,
   MemoryModel model = memory_model(prm, primal, &adjoint, row.n_t, base_mb,
                                    static_cast<unsigned int>(goals.size()));
   // (u_q by an operator of its own: a second degree-q factorization, as enriched's)
-  model.enriched = own_uq_operator();
-  model.consistent = uq_by_adjoint_factors();
+  count_uq_marches(model, prm, !crosswind_by_cell.empty());
   const SlabSolverOptions options = slab_solver_options(prm);
   const bool higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
   model.concurrent =

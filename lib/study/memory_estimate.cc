@@ -239,6 +239,14 @@ SlabSystemSize slab_system(const Space<2> &space, const SlabSolverOptions &optio
   return s;
 }
 
+void count_uq_marches(MemoryModel &m, const Parameters &prm, bool switched)
+{
+  const bool own_consistent =
+      marches_consistent_uq(prm) && consistent_uq_needs_own_operator(prm, switched);
+  m.enriched = marches_enriched_uq(prm) || own_consistent;
+  m.consistent = marches_consistent_uq(prm) && !own_consistent;
+}
+
 namespace
 {
 /// The model for given slab systems (adjoint.n_space = 0: primal only).
@@ -270,13 +278,12 @@ MemoryModel memory_model(const Parameters &prm, const SlabSystemSize &primal,
     m.higher_order = prm.adaptivity.time_indicator == TimeIndicator::higher_order;
     if (m.higher_order)
       m.higher_order_slabs = (n_slabs * (r + 2) + r) / (r + 1);
-    const GoalEstimate e = prm.adaptivity.goal_estimate;
-    m.enriched = e == GoalEstimate::enriched || e == GoalEstimate::both;
-    m.consistent = e == GoalEstimate::consistent || e == GoalEstimate::both;
+    count_uq_marches(m, prm, true);
   }
   m.base_mb = base_mb;
   return m;
 }
+
 
 /// The slab system of FE_Q(degree) on `cells` cells of a structured mesh, predicted:
 /// (n p + 1)^2 ~ cells p^2 DoFs, each coupled with (p + 2)^2 DoFs on average (exact for
@@ -325,12 +332,7 @@ void check_initial_mesh_memory(const Parameters &prm, const Scene<2> &scene,
   MemoryModel model = memory_model(prm, primal, adjoint, !constant, prm.discretization.n_slabs,
                                    mpi_max(resident_memory_mb()), n_goals);
   // loop 1's u_q: without a crosswind factor unless crosswind_first_solve gives one
-  if (model.consistent &&
-      consistent_uq_needs_own_operator(prm, first_loop_crosswind_switched(prm)))
-  {
-    model.enriched = true;
-    model.consistent = false;
-  }
+  count_uq_marches(model, prm, first_loop_crosswind_switched(prm));
   // (the mesh is part of the calibrated bytes per DoF, at least one DoF per cell)
   const double estimate = estimate_memory(model).total_mb;
   std::ostringstream note;

@@ -108,6 +108,13 @@ MemoryModel memory_model(const Parameters &prm, const Space<2> &primal,
                          const Space<2> *adjoint, unsigned int n_slabs, double base_mb,
                          unsigned int n_goals = 1);
 
+/// The goal estimates' degree-q marches of a DWR loop whose crosswind term is
+/// `switched` by a solution (or off), into m: `enriched` for each u_q with an operator
+/// of its own (enriched's; consistent's where consistent_uq_needs_own_operator),
+/// `consistent` for consistent's u_q by the adjoint's factors. memory_model sets them for
+/// a switched loop; the first loop and each loop of the DWR run set them for their own.
+void count_uq_marches(MemoryModel &m, const Parameters &prm, bool switched);
+
 /// Before the mesh is refined: the memory estimate of the first DWR loop (adjoint of
 /// degree adjoint_degree) or, with adjoint_degree = 0, of a primal-only run, predicted
 /// from the coarse mesh's cells times 4^discretization.initial_refinements (FE_Q(p) on

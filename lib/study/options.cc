@@ -202,6 +202,18 @@ bool first_loop_crosswind_switched(const Parameters &prm)
   return prm.discretization.crosswind_first_solve && residual_crosswind(prm);
 }
 
+bool marches_enriched_uq(const Parameters &prm)
+{
+  const GoalEstimate e = prm.adaptivity.goal_estimate;
+  return e == GoalEstimate::enriched || e == GoalEstimate::both;
+}
+
+bool marches_consistent_uq(const Parameters &prm)
+{
+  const GoalEstimate e = prm.adaptivity.goal_estimate;
+  return e == GoalEstimate::consistent || e == GoalEstimate::both;
+}
+
 bool consistent_uq_needs_own_operator(const Parameters &prm, bool switched)
 {
   return prm.discretization.crosswind0 > 0. && prm.adaptivity.adjoint_crosswind && !switched;

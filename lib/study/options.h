@@ -68,6 +68,11 @@ bool residual_crosswind(const Parameters &prm);
 /// (crosswind_first_solve with residual_crosswind); else s_K = 1 on every cell there.
 bool first_loop_crosswind_switched(const Parameters &prm);
 
+/// adaptivity.goal_estimate: whether the loops march enriched's u_q (enriched, both)
+/// and consistent's (consistent, both).
+bool marches_enriched_uq(const Parameters &prm);
+bool marches_consistent_uq(const Parameters &prm);
+
 /// goal_estimate = consistent: whether u_q needs an operator of its own because the
 /// adjoint carries a crosswind term that no solution switches (`switched`: the loop has
 /// a factor s_K from a solution), which u_q leaves out (doc/method.md §8).
